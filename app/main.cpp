@@ -1,0 +1,55 @@
+// softbody: a soft-body physics demo after Listing 8 of the real-time game physics addendum.
+//
+//   softbody                       the interactive demo with the default scene
+//   softbody run [options]         the interactive demo with a chosen scene
+//   softbody simulate [options]    physics only, prints a JSON summary
+//
+// Each subcommand lives in its own cmd_*.cpp; this file only dispatches and turns errors into
+// one line on stderr and an exit code.
+#include <exception>
+#include <iostream>
+#include <string_view>
+
+#include "cli.h"
+#include "commands.h"
+#include "physics/error.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: softbody [run] [--scene FILE] [--mesh FILE] [--set KEY=VALUE]...\n"
+    "       softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
+    "                         [--dump FILE.csv] [--dump-every K] [--threads N]\n"
+    "Run 'softbody <command> --help' for a command's options.";
+
+int dispatch(int argc, char** argv) {
+    using namespace softbody::app;
+    const std::string_view command = argc > 1 ? argv[1] : "";
+    if (command == "simulate") return simulate_command(argc, argv);
+    if (command == "--help" || command == "-h" || command == "help") {
+        std::cout << kUsage << "\n";
+        return kOk;
+    }
+    throw UsageError("unknown command '" + std::string(command) + "'\n" + kUsage);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace softbody::app;
+    try {
+        return dispatch(argc, argv);
+    } catch (const UsageError& e) {
+        std::cerr << "softbody: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const softbody::InputError& e) {
+        std::cerr << "softbody: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "softbody: out of memory\n";
+        return kRuntimeFailure;
+    } catch (const std::exception& e) {
+        std::cerr << "softbody: " << e.what() << "\n";
+        return kRuntimeFailure;
+    }
+}

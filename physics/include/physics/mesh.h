@@ -1,0 +1,70 @@
+// A mesh as the simulation and the renderer need it: one particle per distinct vertex
+// position (Listing 8: "a particle at the location of each vertex"), plus the render vertices
+// and triangles that map back onto those particles.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "physics/vec3.h"
+
+namespace softbody {
+
+// All pairs cost N(N-1)/2 springs a force evaluation; beyond this it cannot run usefully.
+inline constexpr std::size_t kMaxParticles = 20000;
+
+// A face corner as written in the file: indices into the file's positions, normals and
+// texture coordinates (-1 where the file gives none).
+struct Corner {
+    std::int32_t position = -1;
+    std::int32_t normal = -1;
+    std::int32_t uv = -1;
+    bool operator==(const Corner&) const = default;
+};
+
+// What a file holds, before welding. Faces are already triangulated (3 corners each).
+struct RawMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<std::array<float, 2>> uvs;
+    std::vector<Corner> triangle_corners;
+};
+
+// One vertex the GPU draws. Several render vertices may share a particle (UV seams, hard
+// edges); they move together. Corners with the same normal_slot share one smooth normal.
+struct RenderVertex {
+    std::uint32_t particle = 0;
+    std::uint32_t normal_slot = 0;
+    std::array<float, 2> uv{0.0f, 0.0f};
+};
+
+struct Mesh {
+    std::string source;                               // where it came from (for messages)
+    std::vector<Vec3> positions;                      // one per particle, file units
+    std::vector<std::uint32_t> vertex_to_particle;    // file vertex index -> particle
+    std::vector<RenderVertex> render_vertices;
+    std::vector<std::uint32_t> triangles;             // 3 render-vertex indices each
+    std::uint32_t normal_slot_count = 0;
+    bool has_uvs = false;
+
+    std::size_t particle_count() const { return positions.size(); }
+    std::size_t triangle_count() const { return triangles.size() / 3; }
+};
+
+// Loads an OBJ (through tinyobjloader) or an OFF file, chosen by the extension, and welds it.
+// Throws InputError with the file (and line) for a missing, unreadable or malformed file, or
+// for a mesh without usable vertices or with more than kMaxParticles particles.
+Mesh load_mesh(const std::string& path);
+
+// The parsers on their own (used by load_mesh, the tests and the fuzzers).
+RawMesh parse_obj_text(const std::string& text, const std::string& origin);
+RawMesh parse_off_text(const std::string& text, const std::string& origin);
+
+// Welds coincident positions (within 1e-6 of the bounding-box diagonal) into one particle,
+// keeping first-seen order, and builds render vertices and normal slots. Triangles that
+// collapse onto fewer than three particles are dropped.
+Mesh build_mesh(const RawMesh& raw, const std::string& source);
+
+}  // namespace softbody

@@ -1,0 +1,82 @@
+// Every tunable of the simulation, with one set of names shared by scene files (JSON),
+// `--set key=value` on the command line, the UI's sliders and README.md's table.
+//
+// Units are SI. Equation numbers are the addendum's (see README.md, "Equations in the code").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "physics/vec3.h"
+
+namespace softbody {
+
+enum class Integrator {
+    Verlet,           // position Verlet + explicit Euler velocities (Listing 8's advice)
+    SymplecticEuler,  // v += a h, then x += v h
+    ExplicitEuler,    // x += v h and v += a h from the same state (Listings 10, 11)
+    RK4,              // classic Runge-Kutta, four force evaluations per step
+};
+std::string_view to_string(Integrator integrator);
+std::optional<Integrator> integrator_from_string(std::string_view name);
+
+struct Params {
+    std::string mesh;                          // OBJ or OFF file
+    float scale = 1.0f;                        // mesh units -> metres
+    float init_height = 2.0f;                  // m added to every vertex's z (Listing 8)
+    Vec3 initial_velocity{0.0f, 0.0f, 0.0f};   // m/s, every particle
+    float particle_mass = 1.0f;                // kg per particle (Listing 8)
+    float stiffness = 10.0f;                   // k, N/m (Eq. 21)
+    float damping = 0.1f;                      // c, kg/s (Eq. 22)
+    Vec3 gravity{0.0f, 0.0f, -9.81f};          // m/s^2, z is up
+    float dt = 0.02f;                          // s, the fixed tick
+    int substeps = 1;                          // steps of dt/substeps within one tick
+    bool auto_substeps = false;                // pick the fewest substeps that stay stable
+    Integrator integrator = Integrator::Verlet;
+    float drag_coefficient = 0.3f;             // C_D (Eq. 23)
+    float air_density = 1.2f;                  // rho, kg/m^3 (Eq. 23)
+    bool ground = true;                        // a plane z = ground_height
+    float ground_height = 0.0f;                // m
+    float restitution = 0.3f;                  // e, normal bounce
+    float static_friction = 0.6f;              // mu_s (Eq. 24)
+    float dynamic_friction = 0.4f;             // mu_d (Eq. 25)
+    std::vector<std::uint32_t> pinned;         // vertex indices (0-based, as in the file)
+
+    bool operator==(const Params&) const = default;
+};
+
+enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList };
+
+// Describes one key: for validation, documentation and the UI.
+struct ParamInfo {
+    std::string_view key;
+    ParamType type;
+    std::string_view unit;      // "" when it has none
+    std::string_view equation;  // "Eq. 21", or "" when it enters no numbered equation
+    std::string_view summary;   // one line for tooltips and README.md
+    double min = 0.0;           // valid range (numbers, and each component of a vector)
+    double max = 0.0;
+    bool min_exclusive = false;
+    bool live = true;           // false: takes effect on reset (it changes the particles)
+};
+std::span<const ParamInfo> param_table();
+const ParamInfo* find_param(std::string_view key);
+
+// Throws InputError naming the key when a value is out of range or not finite.
+void validate(const Params& params);
+
+// Sets one key from command-line text ("10", "0,0,-9.81", "true", "rk4", "0,5,7").
+// Throws InputError naming the key for an unknown key or a bad value.
+void set_param(Params& params, std::string_view key, std::string_view text);
+
+// The value of one key as command-line text (the inverse of set_param).
+std::string param_text(const Params& params, std::string_view key);
+
+// Closest known key to a misspelt one, for "did you mean" hints ("" when none is close).
+std::string_view closest_key(std::string_view key);
+
+}  // namespace softbody
