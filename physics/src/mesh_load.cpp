@@ -213,10 +213,10 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
     } else {
         malformed(origin, reader.line(), "expected 'OFF' at the start of the file");
     }
-    if (tokens.size() == first && !reader.next(tokens)) {
-        malformed(origin, reader.line(), "expected the vertex and face counts");
+    if (tokens.size() == first) {  // "OFF" alone on its line: the counts are on the next one
+        if (!reader.next(tokens)) malformed(origin, reader.line(), "expected the vertex and face counts");
+        first = 0;
     }
-    if (tokens.size() == 1 && first == 1) first = 0;  // header alone; counts on this line
     long long counts[2] = {0, 0};
     if (tokens.size() < first + 2 || !to_long(tokens[first], counts[0]) || !to_long(tokens[first + 1], counts[1])) {
         malformed(origin, reader.line(), "expected the vertex and face counts");
