@@ -3,6 +3,9 @@
 
 namespace softbody::app {
 
+int run_command(int argc, char** argv, int first);  // softbody [run] ...: the desktop demo
 int simulate_command(int argc, char** argv);  // softbody simulate ...: no window, no GL
+int render_command(int argc, char** argv);    // softbody render ...: PNGs, headless (OSMesa)
+int bench_command(int argc, char** argv);     // softbody bench ...: physics timings, no GL
 
 }  // namespace softbody::app

@@ -20,12 +20,18 @@ constexpr const char* kUsage =
     "usage: softbody [run] [--scene FILE] [--mesh FILE] [--set KEY=VALUE]...\n"
     "       softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
     "                         [--dump FILE.csv] [--dump-every K] [--threads N]\n"
+    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR [options]\n"
+    "       softbody bench [--quick] [--json] [--sizes N,N,...] [options]\n"
     "Run 'softbody <command> --help' for a command's options.";
 
 int dispatch(int argc, char** argv) {
     using namespace softbody::app;
     const std::string_view command = argc > 1 ? argv[1] : "";
+    if (command.empty() || (command.starts_with("--") && command != "--help")) return run_command(argc, argv, 1);
+    if (command == "run") return run_command(argc, argv, 2);
     if (command == "simulate") return simulate_command(argc, argv);
+    if (command == "render") return render_command(argc, argv);
+    if (command == "bench") return bench_command(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
         std::cout << kUsage << "\n";
         return kOk;

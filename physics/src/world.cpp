@@ -14,6 +14,7 @@ namespace {
 constexpr float kContactTolerance = 1e-5f;  // m: a particle this close to the ground touches it
 constexpr float kStaticSpeed = 1e-4f;       // m/s: below this tangential speed, friction is static
 constexpr float kMaxSpeed = 1e5f;           // m/s: faster than this is an explosion, not physics
+constexpr double kEnergyGrowth = 10.0;      // energy beyond the baseline, in units of the energy in play
 
 void copy(const Vec3Array& from, Vec3Array& to) {
     to.x = from.x;
@@ -88,8 +89,8 @@ void World::build_particles() {
     inv_mass_.assign(n, 1.0f / mass_);
     apply_pins();
 
-    x_prev_.resize(n);
-    verlet_h_ = 0.0f;  // x_prev is made from v at the first step
+    verlet_step_.resize(n);
+    verlet_h_ = 0.0f;  // Verlet's step is made from v at the first step
     copy(x_, x_tick_prev_);
     force_.resize(n);
     for (auto& a : accel_) a.resize(n);
@@ -97,6 +98,7 @@ void World::build_particles() {
     status_ = Status::Ok;
     divergence_.clear();
     grab_.reset();
+    energy_baseline_stale_ = true;
     update_substeps();
 }
 
@@ -124,6 +126,10 @@ void World::set_params(const Params& params) {
             if (w != 0.0f) w = 1.0f / mass_;
         }
     }
+    // Switching to Verlet restarts it from the current x and v (x_{-1} = x_0 - v_0 h): its step
+    // was last kept up to date when Verlet last ran, and is stale by now.
+    if (params.integrator != params_.integrator) verlet_h_ = 0.0f;
+    if (!(params == params_)) energy_baseline_stale_ = true;
     params_ = params;
     update_substeps();
 }
@@ -133,8 +139,9 @@ void World::set_pinned(std::uint32_t particle, bool pinned) {
     inv_mass_[particle] = pinned ? 0.0f : 1.0f / mass_;
     if (pinned) {
         v_.set(particle, {});
-        x_prev_.set(particle, x_[particle]);
+        verlet_step_.set(particle, {});
     }
+    energy_baseline_stale_ = true;
 }
 
 void World::update_substeps() {
@@ -242,18 +249,26 @@ void World::step(float h) {
 
     switch (params_.integrator) {
         case Integrator::Verlet: {
-            // Start (or restart after dt changed): x_{-1} = x_0 - v_0 h.
+            // Start (or restart after dt or the integrator changed): x_{-1} = x_0 - v_0 h, so
+            // the step x_0 - x_{-1} is v_0 h.
             if (verlet_h_ != h) {
-                for (std::size_t i = 0; i < n; ++i) x_prev_.set(i, x_[i] - v_[i] * h);
+                for (std::size_t i = 0; i < n; ++i) verlet_step_.set(i, v_[i] * h);
                 verlet_h_ = h;
             }
             accelerations(now, a, true);
             const float h2 = h * h;
             for (std::size_t i = 0; i < n; ++i) {
-                // x_{n+1} = 2 x_n - x_{n-1} + a h^2 (positions);  v_{n+1} = v_n + a h (velocities)
-                const Vec3 x = x_[i];
-                x_.set(i, 2.0f * x - x_prev_[i] + a[i] * h2);
-                x_prev_.set(i, x);
+                // x_{n+1} = 2 x_n - x_{n-1} + a h^2 (positions);  v_{n+1} = v_n + a h (velocities).
+                // Summed as x_{n+1} = x_n + s_{n+1}, s_{n+1} = s_n + a h^2, carrying the step s
+                // itself: the same recurrence, but taking s as the difference of two rounded
+                // positions would feed their rounding back into it every step. Near rest a h^2
+                // falls below half an ulp of a position a metre from the origin (6e-8 m), and
+                // that feedback decouples x from v: a hanging mass then creeps down an ulp per
+                // tick for ever while v points up, and the dampers, fed v, hold it at the wrong
+                // stretch.
+                const Vec3 s_next = verlet_step_[i] + a[i] * h2;
+                verlet_step_.set(i, s_next);
+                x_.add(i, s_next);
                 v_.add(i, a[i] * h);
             }
             break;
@@ -307,8 +322,8 @@ void World::step(float h) {
 }
 
 // After a step: static friction holds, sliding stops without reversing, and the ground pushes
-// back with restitution. x and v are set together, and Verlet's x_prev with them, so position
-// and velocity stay consistent (x_prev = x - v h).
+// back with restitution. x and v are set together, and Verlet's step with them, so position
+// and velocity stay consistent (x_n - x_{n-1} = v h).
 void World::resolve_contacts(float h) {
     const bool verlet = params_.integrator == Integrator::Verlet;
     for (const Contact& c : contacts_) {
@@ -321,8 +336,8 @@ void World::resolve_contacts(float h) {
             x_.x[i] = c.x0;
             x_.y[i] = c.y0;
             if (verlet) {
-                x_prev_.x[i] = c.x0;
-                x_prev_.y[i] = c.y0;
+                verlet_step_.x[i] = 0.0f;
+                verlet_step_.y[i] = 0.0f;
             }
         }
     }
@@ -336,7 +351,7 @@ void World::resolve_contacts(float h) {
         const float v_n = v_.z[i];
         if (v_n < -bounce_speed) v_.z[i] = -params_.restitution * v_n;  // v_n' = -e v_n
         else if (v_n < 0.0f) v_.z[i] = 0.0f;
-        if (verlet) x_prev_.set(i, x_[i] - v_[i] * h);
+        if (verlet) verlet_step_.set(i, v_[i] * h);
     }
 }
 
@@ -345,10 +360,11 @@ void World::resolve_contacts(float h) {
 // ---------------------------------------------------------------------------------------------
 void World::tick() {
     if (status_ != Status::Ok) return;
+    if (energy_baseline_stale_ && !grab_) take_energy_baseline();
     copy(x_, x_tick_prev_);
     copy(x_, x_good_);
     copy(v_, v_good_);
-    copy(x_prev_, x_prev_good_);
+    copy(verlet_step_, verlet_step_good_);
     const float good_verlet_h = verlet_h_;
     const float h = params_.dt / static_cast<float>(substeps_);
     for (int s = 0; s < substeps_; ++s) step(h);
@@ -358,7 +374,7 @@ void World::tick() {
         // Keep the last finite state on show; nothing downstream ever sees a NaN.
         copy(x_good_, x_);
         copy(v_good_, v_);
-        copy(x_prev_good_, x_prev_);
+        copy(verlet_step_good_, verlet_step_);
         copy(x_, x_tick_prev_);
         verlet_h_ = good_verlet_h;
         --ticks_;
@@ -385,6 +401,23 @@ void World::check_divergence() {
             what = "particle " + std::to_string(i) + " moves at " + fixed(length(v), 0) + " m/s";
         }
     }
+    // Past its stability limit a body need not fly apart: the fastest mode (the uniform
+    // expansion) can grow until the springs turn the body inside out and cap it, leaving it
+    // churning in place with a hundred times the energy it had, every particle close to the
+    // centre of mass and at a finite speed. Nothing in the world supplies energy except the
+    // grab (dampers, drag, friction and impacts remove it; gravity's work is the gravitational
+    // term), so kinetic + gravitational energy, a lower bound of the total (elastic energy is
+    // never negative), far above the total at the last outside change was made by the step.
+    // Only flagged when the step is past its estimated limit: explicit Euler gains energy on
+    // purpose even where no mode grows exponentially (a particle in free fall).
+    if (what.empty() && !grab_ && !energy_baseline_stale_) {
+        const double E = kinetic_plus_gravity();
+        const double allowed = energy_baseline_ + kEnergyGrowth * energy_scale_ + 1e-9 * std::abs(energy_baseline_);
+        if (E > allowed && !stability().stable) {
+            what = "the body's kinetic and gravitational energy reached " + fixed(E, 1) + " J, from a total of " +
+                   fixed(energy_baseline_, 1) + " J with nothing to supply more";
+        }
+    }
     if (what.empty()) return;
 
     const Stability s = stability();
@@ -407,6 +440,31 @@ void World::check_divergence() {
     }
     status_ = Status::Diverged;
     divergence_ = out.str();
+}
+
+// The energy budget for check_divergence, taken before the first tick after an outside change.
+// The scale is the energy in play: motion, deformation and the fall to the ground (plus two
+// body radii of it, so a body resting on the ground or in free space has some), generous for
+// the bounded energy error of a stable step.
+void World::take_energy_baseline() {
+    const Energy e = energy();
+    energy_baseline_ = e.total();
+    double height = 0.0;
+    if (params_.ground) height = std::max(0.0, double(center_of_mass().z) - double(params_.ground_height));
+    const double weight = double(mass_) * double(particle_count()) * double(length(params_.gravity));
+    energy_scale_ = e.kinetic + e.elastic + weight * (height + 2.0 * double(rest_radius_));
+    energy_baseline_stale_ = false;
+}
+
+// The O(N) part of energy(): sum 1/2 m |v|^2 (free particles) + sum -m (g . x).
+double World::kinetic_plus_gravity() const {
+    double kinetic = 0.0, gravity = 0.0;
+    for (std::size_t i = 0; i < particle_count(); ++i) {
+        const Vec3 v = v_[i];
+        if (inv_mass_[i] != 0.0f) kinetic += 0.5 * double(mass_) * double(dot(v, v));
+        gravity -= double(mass_) * double(dot(params_.gravity, x_[i]));
+    }
+    return kinetic + gravity;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,8 +1,9 @@
 // The spring (Eq. 21) and damper (Eq. 22) between every unique pair of particles: the O(N^2)
 // heart of Listing 8. Two implementations compute the same sums:
 //   pair_forces_reference  the readable version, one pair at a time (read this first);
-//   PairForceKernel        the fast one: blocks of pairs, spread over threads, with results
-//                          that do not depend on the number of threads.
+//   PairForceKernel        the fast one: blocks of pairs, SIMD (AVX2/AVX-512 when the CPU has
+//                          them, a portable loop otherwise), spread over threads, with
+//                          results that do not depend on the number of threads.
 #pragma once
 
 #include <cstddef>
@@ -13,8 +14,13 @@
 
 namespace softbody {
 
+namespace detail {
+struct PackedParticles;  // the tiles' layout (physics/src/pair_tiles.h)
+}
+
 // Everything the pair loop reads. Rest lengths are not stored: l0 = |r_j - r_i| is recomputed
-// from the rest positions r, which costs O(N) memory instead of N(N-1)/2 floats.
+// from the rest positions r, which costs O(N) memory instead of N(N-1)/2 floats (200 MB at
+// N = 10,000, 800 MB at 20,000) and measured no slower (tests/benchmarks, BM_RestLength).
 struct PairInput {
     const float *x, *y, *z;     // positions
     const float *vx, *vy, *vz;  // velocities
@@ -30,26 +36,47 @@ void pair_forces_reference(const PairInput& in, Vec3Array& f);
 // Sum over pairs of 1/2 k (l - l0)^2 (the springs' elastic energy).
 double elastic_energy_reference(const PairInput& in);
 
+// Which tile code the fast kernel runs. Auto picks the widest this CPU supports (checked at
+// run time, so one binary runs everywhere); Scalar is the portable loop, for tests and bench.
+// Results are bit-identical for one variant on one machine; variants agree to float rounding.
+enum class PairKernelVariant { Auto, Scalar, Avx2, Avx512 };
+
 class PairForceKernel {
 public:
-    static constexpr std::size_t kBlock = 256;  // particles per block: a tile's data fits in L1/L2
+    static constexpr std::size_t kBlock = 256;  // particles per block: a tile's data fits in L1
 
-    explicit PairForceKernel(ThreadPool& pool) : pool_(pool) {}
+    explicit PairForceKernel(ThreadPool& pool, PairKernelVariant variant = PairKernelVariant::Auto);
 
-    // Same contract as pair_forces_reference. Deterministic: bit-identical for any thread count.
+    // Same contract as pair_forces_reference, to float rounding (see pair_forces.cpp).
+    // Deterministic: bit-identical run to run and for any thread count, for one variant.
     void compute(const PairInput& in, Vec3Array& f);
     double elastic_energy(const PairInput& in);
 
-    // Name of the tile code in use ("avx2", "scalar").
-    static const char* variant();
+    // Name of the tile code in use: "avx512", "avx2" or "scalar".
+    const char* variant() const { return name(variant_); }
+    PairKernelVariant variant_id() const { return variant_; }
+
+    // What this binary can run here (built in, and reported by the CPU), and the widest of it.
+    static bool supported(PairKernelVariant variant);
+    static PairKernelVariant best_variant();
+    static const char* name(PairKernelVariant variant);
+
+    // Bytes the kernel keeps for n particles (packed copy of the state, per-tile partials):
+    // O(n^2 / kBlock) for the partials, no per-pair storage.
+    static std::size_t memory_bytes(std::size_t n);
 
 private:
     void prepare(std::size_t n);
+    detail::PackedParticles pack(const PairInput& in, float scale_v, float scale_r);
 
     ThreadPool& pool_;
+    PairKernelVariant variant_;
     std::size_t n_ = 0, blocks_ = 0;
     std::vector<std::size_t> tile_i_, tile_j_;  // block indices of each tile, tile_i_ <= tile_j_
-    FloatArray partial_;                         // per tile: 2 x kBlock x 3 partial forces
+    std::vector<std::size_t> order_;            // tiles in the order threads pick them up
+    FloatArray packed_;                         // 9 arrays of padded particles (see pair_tiles.h)
+    std::size_t stride_ = 0;                    // floats per packed array
+    FloatArray partial_;                        // per tile: 2 x kBlock x 3 partial forces
     std::vector<double> partial_energy_;
 };
 

@@ -3,7 +3,8 @@
 // tick advanced by one of four integrators.
 //
 // Layout follows "topology apart from state": the rest positions (from which every rest length
-// comes) never change after construction; x, x_prev, v and 1/m are the state, in flat arrays.
+// comes) never change after construction; x, Verlet's step x_n - x_{n-1}, v and 1/m are the
+// state, in flat arrays.
 #pragma once
 
 #include <cstdint>
@@ -80,7 +81,10 @@ public:
     // Interaction (the app's mouse): pin or free a particle, or pull one toward a point.
     void set_pinned(std::uint32_t particle, bool pinned);
     bool is_pinned(std::uint32_t particle) const { return inv_mass_[particle] == 0.0f; }
-    void set_grab(std::optional<Grab> grab) { grab_ = grab; }
+    void set_grab(std::optional<Grab> grab) {
+        grab_ = grab;
+        energy_baseline_stale_ = true;  // the grab does work on the body
+    }
     const std::optional<Grab>& grab() const { return grab_; }
 
     Status status() const { return status_; }
@@ -116,6 +120,8 @@ private:
     void accelerations(const StateView& s, Vec3Array& a, bool record_contacts);
     void resolve_contacts(float h);
     void check_divergence();
+    void take_energy_baseline();
+    double kinetic_plus_gravity() const;
     PairInput pair_input(const StateView& s) const;
 
     Params params_;
@@ -129,19 +135,25 @@ private:
     float rest_radius_ = 0.0f;  // bounding sphere about the rest centre of mass (Eq. 23's S)
 
     // State.
-    Vec3Array x_, x_prev_, v_;  // x_prev_: Verlet's previous position
+    Vec3Array x_, v_;
+    Vec3Array verlet_step_;     // Verlet's x_n - x_{n-1}, carried as such (see step())
     FloatArray inv_mass_;       // 0 for pinned particles
     float mass_ = 1.0f;
     std::uint64_t ticks_ = 0;
     int substeps_ = 1;
-    float verlet_h_ = 0.0f;     // step x_prev_ was made for
+    float verlet_h_ = 0.0f;     // step verlet_step_ was made for (0: make it from v)
     Status status_ = Status::Ok;
     std::string divergence_;
     std::optional<Grab> grab_;
 
+    // Energy at the last outside change (reset, params, pins, grab), for divergence detection.
+    double energy_baseline_ = 0.0;  // total energy then, J
+    double energy_scale_ = 0.0;     // energy in play then: kinetic + elastic + weight x height, J
+    bool energy_baseline_stale_ = true;
+
     // Scratch, kept to avoid allocating every step.
     Vec3Array force_, accel_[4], x_tmp_, v_stage_, v_sum_;
-    Vec3Array x_tick_prev_, x_good_, v_good_, x_prev_good_;
+    Vec3Array x_tick_prev_, x_good_, v_good_, verlet_step_good_;
     std::vector<Contact> contacts_;
 };
 

@@ -1,0 +1,402 @@
+// softbody render: simulates a scene from t = 0 at the fixed tick and writes one PNG per
+// requested time, rendered headless (OSMesa, no display). Same inputs, same bytes.
+// One JSON line per image on stdout: time, tick, state_hash, file.
+//
+// softbody render --bench measures the renderer instead (see render_bench below).
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "body_view.h"
+#include "cli.h"
+#include "commands.h"
+#include "offscreen_context.h"
+#include "physics/error.h"
+#include "physics/mesh.h"
+#include "physics/world.h"
+#include "render/renderer.h"
+
+namespace softbody::app {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR\n"
+    "                       [--size WxH] [--camera KEY=VALUE,...] [--overlay NAME,...] [--body STYLE]\n"
+    "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--samples N] [--threads N]\n"
+    "       softbody render --bench [--frames N]\n"
+    "  --at        times in seconds; each is drawn between the two ticks around it\n"
+    "  --out       folder for DIR/<scene>_t<time>.png (created if missing)\n"
+    "  --size      image size, 16..8192 each way (default 800x600)\n"
+    "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
+    "              target=X:Y:Z, follow (frame the body in every image; default: frame the\n"
+    "              start of the fall once, so every image shares one camera)\n"
+    "  --overlay   particles, springs, pins, com, velocity, or none (default: pins)\n"
+    "  --body      solid, ghost (see-through) or hidden (default: solid)\n"
+    "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
+    "  --debug-offset DX,DY,DZ and --debug-flip-normals draw deliberate faults (the screenshot\n"
+    "              tests' negative checks)";
+
+constexpr int kMinSide = 16;
+
+struct CameraOptions {
+    std::optional<float> yaw, pitch, fov, distance;
+    float zoom = 1.0f;
+    std::optional<glm::vec3> target;
+    bool follow = false;
+};
+
+float degrees(std::string_view option, std::string_view text, double lo, double hi) {
+    return static_cast<float>(parse_double(option, text, lo, hi) * std::numbers::pi / 180.0);
+}
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+    std::vector<std::string_view> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t end = text.find(separator, start);
+        parts.push_back(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+        if (end == std::string_view::npos) break;
+        start = end + 1;
+    }
+    return parts;
+}
+
+glm::vec3 parse_vec3(std::string_view option, std::string_view text, char separator) {
+    const auto parts = split(text, separator);
+    if (parts.size() != 3) {
+        throw UsageError(std::string(option) + ": expected three numbers separated by '" + separator + "', got '" +
+                         std::string(text) + "'");
+    }
+    return {float(parse_double(option, parts[0], -1e6, 1e6)), float(parse_double(option, parts[1], -1e6, 1e6)),
+            float(parse_double(option, parts[2], -1e6, 1e6))};
+}
+
+void parse_camera(std::string_view text, CameraOptions& camera) {
+    for (std::string_view item : split(text, ',')) {
+        const std::size_t eq = item.find('=');
+        const std::string_view key = item.substr(0, eq);
+        const std::string_view value = eq == std::string_view::npos ? std::string_view() : item.substr(eq + 1);
+        const std::string option = "--camera " + std::string(key);
+        if (key == "follow" && eq == std::string_view::npos) camera.follow = true;
+        else if (eq == std::string_view::npos) throw UsageError("--camera: expected KEY=VALUE, got '" + std::string(item) + "'");
+        else if (key == "yaw") camera.yaw = degrees(option, value, -3600.0, 3600.0);
+        else if (key == "pitch") camera.pitch = degrees(option, value, -89.0, 89.0);
+        else if (key == "fov") camera.fov = degrees(option, value, 5.0, 150.0);
+        else if (key == "distance") camera.distance = float(parse_double(option, value, 0.05, 300.0));
+        else if (key == "zoom") camera.zoom = float(parse_double(option, value, 0.05, 20.0));
+        else if (key == "target") camera.target = parse_vec3(option, value, ':');
+        else throw UsageError("--camera: unknown key '" + std::string(key) + "' (yaw, pitch, fov, distance, zoom, target, follow)");
+    }
+}
+
+void parse_overlays(std::string_view text, render::Overlays& on) {
+    on = render::Overlays{};
+    on.pins = false;
+    for (std::string_view name : split(text, ',')) {
+        if (name == "particles") on.particles = true;
+        else if (name == "springs") on.springs = true;
+        else if (name == "pins") on.pins = true;
+        else if (name == "com") on.center_of_mass = true;
+        else if (name == "velocity" || name == "velocities") on.velocities = true;
+        else if (name == "none") {
+        } else {
+            throw UsageError("--overlay: unknown overlay '" + std::string(name) +
+                             "' (particles, springs, pins, com, velocity, none)");
+        }
+    }
+}
+
+glm::vec3 parse_color(std::string_view text) {
+    if (!text.empty() && text[0] == '#') text.remove_prefix(1);
+    unsigned value = 0;
+    if (text.size() != 6 || std::sscanf(std::string(text).c_str(), "%6x", &value) != 1 ||
+        text.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos) {
+        throw UsageError("--body-color: expected six hex digits RRGGBB, got '" + std::string(text) + "'");
+    }
+    return {float((value >> 16) & 0xFF) / 255.0f, float((value >> 8) & 0xFF) / 255.0f, float(value & 0xFF) / 255.0f};
+}
+
+std::pair<int, int> parse_size(std::string_view text) {
+    const std::size_t x = text.find('x');
+    if (x == std::string_view::npos) throw UsageError("--size: expected WxH such as 800x600, got '" + std::string(text) + "'");
+    const auto w = parse_int("--size (width)", text.substr(0, x), kMinSide, OffscreenContext::kMaxSide);
+    const auto h = parse_int("--size (height)", text.substr(x + 1), kMinSide, OffscreenContext::kMaxSide);
+    return {int(w), int(h)};
+}
+
+// The output folder must exist (it is created) and take files: checked before any work.
+void prepare_output(const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) {
+        throw InputError(dir.string() + ": cannot create the output folder (" +
+                         (ec ? ec.message() : std::string("a file of that name exists")) + ")");
+    }
+    const std::filesystem::path probe = dir / ".softbody-write-test";
+    {
+        std::ofstream out(probe);
+        if (!out || !(out << "x") || !out.flush()) throw InputError(dir.string() + ": the output folder is not writable");
+    }
+    std::filesystem::remove(probe, ec);
+}
+
+std::string time_label(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", t);
+    return text;
+}
+
+std::string hex(std::uint64_t value) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016" PRIx64, value);
+    return text;
+}
+
+// The sphere to keep in view: the body now, and where it will land on the floor below.
+void frame_body(const World& world, const Params& params, float aspect, render::Camera& camera, float zoom) {
+    const Vec3 c = world.center_of_mass();
+    float r = 0.0f;
+    for (std::size_t i = 0; i < world.particle_count(); ++i) r = std::max(r, length(world.positions()[i] - c));
+    r = std::max(r, 1e-3f);
+    glm::vec3 centre(c.x, c.y, c.z);
+    float radius = r;
+    if (!params.pinned.empty()) {
+        // A pinned body hangs: room below it for the sag, not the whole way to the floor.
+        centre.z -= 0.4f * r;
+        radius = 1.4f * r;
+    } else if (params.ground && c.z - params.ground_height > 0.0f) {
+        const glm::vec3 landed(c.x, c.y, std::min(c.z, params.ground_height + 0.6f * r));
+        centre = 0.5f * (centre + landed);
+        radius = 0.5f * glm::length(glm::vec3(c.x, c.y, c.z) - landed) + r;
+    }
+    camera.frame(centre, std::max(radius, 1.6f * r), aspect, 0.85f);
+    camera.zoom(zoom);
+}
+
+void apply_camera_options(const CameraOptions& options, render::Camera& camera) {
+    if (options.yaw) camera.yaw = *options.yaw;
+    if (options.pitch) camera.pitch = *options.pitch;
+    if (options.fov) camera.fov_y = *options.fov;
+}
+
+int render_bench(int argc, char** argv);
+
+}  // namespace
+
+int render_command(int argc, char** argv) {
+    Args args(argc, argv, 2);
+    SceneOptions scene;
+    std::vector<double> times;
+    std::string out_dir;
+    int width = 800, height = 600;
+    CameraOptions camera_options;
+    render::Frame frame;
+    int threads = hardware_threads();
+    bool hide_ground = false;
+    while (!args.done()) {
+        if (scene.take(args)) continue;
+        const std::string_view option = args.next();
+        if (option == "--at") {
+            for (std::string_view t : split(args.value(option), ',')) times.push_back(parse_double(option, t, 0.0, 1e5));
+        } else if (option == "--out") {
+            out_dir = args.value(option);
+            if (out_dir.empty()) throw UsageError("--out: expected a folder");
+        } else if (option == "--size") {
+            std::tie(width, height) = parse_size(args.value(option));
+        } else if (option == "--camera") {
+            parse_camera(args.value(option), camera_options);
+        } else if (option == "--overlay") {
+            parse_overlays(args.value(option), frame.overlays);
+        } else if (option == "--body") {
+            const std::string_view style = args.value(option);
+            if (style == "solid") frame.appearance.body = render::BodyStyle::Solid;
+            else if (style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
+            else if (style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
+            else throw UsageError("--body: expected solid, ghost or hidden, got '" + std::string(style) + "'");
+        } else if (option == "--body-color") {
+            frame.appearance.body_color = parse_color(args.value(option));
+        } else if (option == "--no-ground") {
+            hide_ground = true;
+        } else if (option == "--no-shadows") {
+            frame.appearance.shadows = false;
+        } else if (option == "--samples") {
+            frame.appearance.samples = int(parse_int(option, args.value(option), 1, 4));
+        } else if (option == "--threads") {
+            threads = int(parse_int(option, args.value(option), 1, 256));
+        } else if (option == "--debug-offset") {
+            frame.debug.body_offset = parse_vec3(option, args.value(option), ',');
+        } else if (option == "--debug-flip-normals") {
+            frame.debug.flip_normals = true;
+        } else if (option == "--bench") {
+            return render_bench(argc, argv);
+        } else if (option == "--help" || option == "-h") {
+            std::cout << kUsage << "\n";
+            return kOk;
+        } else {
+            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
+        }
+    }
+    if (times.empty()) throw UsageError(std::string("--at T1,T2,... is required\n") + kUsage);
+    if (out_dir.empty()) throw UsageError(std::string("--out DIR is required\n") + kUsage);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+
+    // Inputs first (cheap, and the user's most likely mistakes), then the output folder, then GL.
+    const Params params = scene.resolve();
+    World world(params, load_mesh(params.mesh), WorldOptions{threads, false});
+    const std::string name = scene.name(params);
+    for (std::size_t i = 1; i < times.size(); ++i) {
+        if (time_label(times[i]) == time_label(times[i - 1])) {
+            throw UsageError("--at: " + std::to_string(times[i - 1]) + " and " + std::to_string(times[i]) +
+                             " round to the same file name (times are written to the millisecond)");
+        }
+    }
+    const std::filesystem::path dir(out_dir);
+    prepare_output(dir);
+
+    OffscreenContext context(width, height);
+    render::Renderer renderer(context.loader());
+    if (width > renderer.info().max_size || height > renderer.info().max_size) {
+        throw InputError("--size " + std::to_string(width) + "x" + std::to_string(height) + ": this OpenGL (" +
+                         renderer.info().renderer + ") draws at most " + std::to_string(renderer.info().max_size) +
+                         " pixels a side");
+    }
+
+    const float aspect = float(width) / float(height);
+    match_ground(params, frame.appearance);
+    if (hide_ground) frame.appearance.ground = false;  // drawn without it; the physics keeps it
+    apply_camera_options(camera_options, frame.camera);
+    frame_body(world, params, aspect, frame.camera, camera_options.zoom);
+    const auto fix_camera = [&] {
+        if (camera_options.target) frame.camera.target = *camera_options.target;
+        if (camera_options.distance) frame.camera.distance = *camera_options.distance;
+    };
+    fix_camera();
+
+    const double dt = double(params.dt);
+    for (const double t : times) {
+        // The image at time t lies between ticks n - 1 and n: n = ceil(t / dt).
+        // dt is a float (0.02f is not 0.02): a time within 1e-4 tick of a tick is that tick.
+        double ticks_exact = t / dt;
+        if (std::abs(ticks_exact - std::round(ticks_exact)) < 1e-4) ticks_exact = std::round(ticks_exact);
+        auto n = static_cast<std::uint64_t>(std::ceil(ticks_exact - 1e-9));
+        const float alpha = n == 0 ? 1.0f : float(std::clamp(1.0 - (double(n) - ticks_exact), 0.0, 1.0));
+        while (world.ticks() < n && world.status() == Status::Ok) world.tick();
+        if (world.status() != Status::Ok) {
+            std::cerr << "softbody: the simulation diverged before t = " << t << " s: " << world.divergence() << "\n";
+            return kDiverged;
+        }
+        frame.body = body_view(world, alpha);
+        if (camera_options.follow) {
+            frame_body(world, params, aspect, frame.camera, camera_options.zoom);
+            fix_camera();
+        }
+        renderer.draw(frame, width, height);
+        const std::filesystem::path file = dir / (name + "_t" + time_label(t) + ".png");
+        render::write_png(file.string(), renderer.read_back());
+        nlohmann::ordered_json line = {
+            {"time", t}, {"tick", world.ticks()}, {"alpha", alpha}, {"state_hash", hex(world.state_hash())},
+            {"file", file.string()},
+        };
+        std::cout << line.dump() << std::endl;
+    }
+    return kOk;
+}
+
+namespace {
+
+// A torus of rings x segments vertices: smooth, closed, and any size wanted exactly.
+Mesh torus_mesh(int rings, int segments) {
+    RawMesh raw;
+    const float major = 0.5f, minor = 0.2f;
+    for (int i = 0; i < rings; ++i) {
+        const float u = 2.0f * std::numbers::pi_v<float> * float(i) / float(rings);
+        for (int j = 0; j < segments; ++j) {
+            const float v = 2.0f * std::numbers::pi_v<float> * float(j) / float(segments);
+            raw.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
+                                     minor * std::sin(v)});
+        }
+    }
+    auto at = [&](int i, int j) { return static_cast<std::int32_t>((i % rings) * segments + (j % segments)); };
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const std::int32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+            for (std::int32_t p : {a, b, c, a, c, d}) raw.triangle_corners.push_back(Corner{p, -1, -1});
+        }
+    }
+    return build_mesh(raw, "torus " + std::to_string(rings) + "x" + std::to_string(segments));
+}
+
+// Benchmark: the per-frame cost of streaming the particles into the GPU mesh and recomputing
+// the normals (meshes of 500, 2,500 and 10,000 vertices), and whole headless frames at 800x600.
+int render_bench(int argc, char** argv) {
+    Args args(argc, argv, 2);
+    int frames = 200;
+    while (!args.done()) {
+        const std::string_view option = args.next();
+        if (option == "--bench") continue;
+        if (option == "--frames") frames = int(parse_int(option, args.value(option), 1, 100000));
+        else throw UsageError("render --bench: unknown option '" + std::string(option) + "' (only --frames N)");
+    }
+    using Clock = std::chrono::steady_clock;
+    const int width = 800, height = 600;
+    OffscreenContext context(width, height);
+    render::Renderer renderer(context.loader());
+    std::cout << "renderer: " << renderer.info().renderer << ", " << renderer.info().version << "\n";
+    std::cout << "frames per case: " << frames << " (after 5 warm-up frames)\n\n";
+    std::cout << "vertices  triangles  normals+interp ms  stream ms  draw() ms  frame ms (800x600, 4x MSAA, finished)\n";
+
+    struct Case {
+        int rings, segments;
+    };
+    for (const Case c : {Case{20, 25}, Case{50, 50}, Case{100, 100}}) {
+        const Mesh mesh = torus_mesh(c.rings, c.segments);
+        const std::size_t n = mesh.particle_count();
+        Vec3Array x, rest;
+        x.resize(n);
+        rest.resize(n);
+        for (std::size_t i = 0; i < n; ++i) rest.set(i, mesh.positions[i] + Vec3{0.0f, 0.0f, 0.5f});
+        render::Frame frame;
+        frame.body.mesh = &mesh;
+        frame.body.positions = span_of(x);
+        frame.camera.frame({0.0f, 0.0f, 0.4f}, 0.8f, float(width) / float(height));
+        double surface = 0.0, stream = 0.0, draw = 0.0, total = 0.0;
+        for (int f = -5; f < frames; ++f) {
+            // A squash-and-stretch wobble, so every frame really has new positions and normals.
+            const float s = 1.0f + 0.2f * std::sin(0.3f * float(f));
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vec3 p = rest[i];
+                x.set(i, {p.x * std::sqrt(1.0f / s), p.y * std::sqrt(1.0f / s), 0.5f + (p.z - 0.5f) * s});
+            }
+            const auto start = Clock::now();
+            renderer.draw(frame, width, height);
+            (void)renderer.read_back();  // waits for the frame: the wall time includes the GPU work
+            const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+            if (f < 0) continue;
+            surface += renderer.timings().surface_ms;
+            stream += renderer.timings().upload_ms;
+            draw += renderer.timings().total_ms;
+            total += ms;
+        }
+        std::printf("%8zu  %9zu  %17.3f  %9.3f  %9.2f  %8.2f\n", mesh.render_vertices.size(), mesh.triangle_count(),
+                    surface / frames, stream / frames, draw / frames, total / frames);
+    }
+    std::cout << "\nnormals+interp: CPU interpolation and normal recomputation; stream: orphaning the vertex\n"
+                 "buffer and writing the new vertices; frame: draw() plus reading the pixels back.\n";
+    return kOk;
+}
+
+}  // namespace
+
+}  // namespace softbody::app

@@ -1,0 +1,202 @@
+// softbody [run]: the interactive demo. A GLFW window, the renderer, the ImGui panels, and the
+// loop of Listing 8: wall time into the fixed-tick clock, ticks, then draw the interpolated
+// state. With --frames it runs a fixed number of frames at a fixed frame time (deterministic),
+// replays --script, saves --screenshot and exits: how the tests drive it without a person.
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "commands.h"
+#include "gui/demo.h"
+#include "gui/input.h"
+#include "gui/panels.h"
+#include "gui/script.h"
+#include "gui/window.h"
+#include "physics/error.h"
+#include "physics/scene_io.h"
+#include "render/image.h"
+#include "render/renderer.h"
+
+namespace softbody::app {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: softbody [run] [--scene FILE] [--mesh FILE] [--set KEY=VALUE]...\n"
+    "                      [--size WxH] [--frames N [--frame-time S]] [--script FILE] [--screenshot FILE.png]";
+
+// The whole window, UI included, as it is in the back buffer now.
+void save_window(const std::string& path, int width, int height) {
+    render::Image image(width, height);
+    std::vector<std::uint8_t> rows(image.rgba.size());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    const std::size_t stride = static_cast<std::size_t>(width) * 4;
+    for (int y = 0; y < height; ++y) {  // GL's rows start at the bottom
+        std::copy_n(rows.data() + static_cast<std::size_t>(height - 1 - y) * stride, stride,
+                    image.rgba.data() + static_cast<std::size_t>(y) * stride);
+    }
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    render::write_png(path, image);
+}
+
+void run_script_command(Demo& demo, const ScriptCommand& command) {
+    const auto& args = command.args;
+    if (command.verb == "set") {
+        Params params = demo.params();
+        try {
+            set_param(params, args[0], args[1]);
+            demo.edit(params);
+        } catch (const std::exception& e) {
+            demo.set_error(e.what());
+        }
+    } else if (command.verb == "load_scene") {
+        demo.load_scene_file(args[0]);
+    } else if (command.verb == "load_mesh") {
+        demo.load_mesh_file(args[0]);
+    } else if (command.verb == "save_preset") {
+        demo.save_preset(args[0], args.size() == 2);
+    } else if (command.verb == "reset") {
+        demo.reset();
+    } else if (command.verb == "pause") {
+        demo.paused = true;
+    } else if (command.verb == "play") {
+        demo.paused = false;
+    }
+}
+
+}  // namespace
+
+int run_command(int argc, char** argv, int first) {
+    Args args(argc, argv, first);
+    SceneOptions scene;
+    WindowOptions window_options;
+    std::int64_t frames = -1;
+    double frame_time = 1.0 / 60.0;
+    std::string script_path, screenshot_path;
+    while (!args.done()) {
+        if (scene.take(args)) continue;
+        const std::string_view option = args.next();
+        if (option == "--frames") frames = parse_int(option, args.value(option), 1, 10'000'000);
+        else if (option == "--frame-time") frame_time = parse_double(option, args.value(option), 1e-4, 1.0);
+        else if (option == "--script") script_path = args.value(option);
+        else if (option == "--screenshot") screenshot_path = args.value(option);
+        else if (option == "--size") {
+            const std::string_view size = args.value(option);
+            const auto x = size.find('x');
+            if (x == std::string_view::npos) throw UsageError("--size: expected WxH, got '" + std::string(size) + "'");
+            window_options.width = static_cast<int>(parse_int(option, size.substr(0, x), 320, 8192));
+            window_options.height = static_cast<int>(parse_int(option, size.substr(x + 1), 240, 8192));
+        } else if (option == "--help" || option == "-h") {
+            std::cout << kUsage << "\n";
+            return kOk;
+        } else {
+            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
+        }
+    }
+    if (!screenshot_path.empty() && frames < 0) throw UsageError("--screenshot needs --frames N");
+    const std::vector<ScriptCommand> script = script_path.empty() ? std::vector<ScriptCommand>{} : load_script(script_path);
+    const bool scripted = frames >= 0;
+    window_options.vsync = !scripted;
+
+    // A scene that cannot load is shown as an error over the default scene, not a dead window.
+    std::string first_error;
+    Params params;
+    try {
+        params = scene.resolve();
+    } catch (const InputError& e) {
+        first_error = e.what();
+        params = load_scene(default_scene_path());
+    }
+    std::unique_ptr<Demo> demo;
+    try {
+        demo = std::make_unique<Demo>(params);
+        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? params.mesh : default_scene_path());
+    } catch (const InputError& e) {
+        first_error = e.what();
+        demo = std::make_unique<Demo>(load_scene(default_scene_path()));
+        demo->set_source(default_scene_path());
+    }
+    if (!first_error.empty()) demo->set_error(first_error);
+
+    Window window(window_options);
+    render::Renderer renderer(reinterpret_cast<render::Loader>(glfwGetProcAddress));
+    Panels panels(window.content_scale());
+    Controls controls;
+    // The panels cover the left of the window: frame the body in the rest of it.
+    auto panel_shift = [&] {
+        return panels.show_panels ? 0.5f * panels.width() / float(std::max(1, window.framebuffer_width())) : 0.0f;
+    };
+    demo->set_view(float(window.framebuffer_width()) / float(std::max(1, window.framebuffer_height())), panel_shift());
+    demo->frame_body();
+
+    std::size_t next_command = 0;
+    double last = window.time();
+    for (std::int64_t frame = 0; !window.should_close() && (!scripted || frame < frames); ++frame) {
+        window.poll_events();
+        const float width = float(window.framebuffer_width()), height = float(std::max(1, window.framebuffer_height()));
+        const float ui_scale = window.content_scale();
+        demo->set_view(width / height, panel_shift());
+
+        // Input: the person's (unless the UI has it), then the script's for this frame.
+        const ImGuiIO& io = ImGui::GetIO();
+        for (const InputEvent& event : window.take_events()) {
+            const bool mouse = event.type != InputEvent::Type::Key;
+            if ((mouse && io.WantCaptureMouse && !demo->grabbing()) || (!mouse && io.WantCaptureKeyboard)) continue;
+            const UiRequests ui = controls.handle(*demo, event, width, height, ui_scale);
+            panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
+            if (ui.toggle_panels) panels.show_panels = !panels.show_panels;
+        }
+        for (; next_command < script.size() && script[next_command].frame <= frame; ++next_command) {
+            const ScriptCommand& command = script[next_command];
+            if (command.verb == "input") {
+                const UiRequests ui = controls.handle(*demo, command.input, width, height, ui_scale);
+                panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
+                if (ui.toggle_panels) panels.show_panels = !panels.show_panels;
+            } else {
+                run_script_command(*demo, command);
+            }
+        }
+        for (const std::string& file : window.take_dropped_files()) demo->load_mesh_file(file);
+
+        // Physics: whole fixed ticks for the time that passed (fixed frame time when scripted).
+        const double now = window.time();
+        demo->advance(scripted ? frame_time : now - last);
+        last = now;
+
+        // Draw: the scene, then the UI over it.
+        renderer.draw(demo->make_frame(), static_cast<int>(width), static_cast<int>(height), 0);
+        window.begin_ui_frame();
+        panels.draw(*demo, scripted ? float(1.0 / frame_time) : io.Framerate);
+        window.end_ui_frame();
+        if (scripted && frame + 1 == frames && !screenshot_path.empty()) {
+            save_window(screenshot_path, static_cast<int>(width), static_cast<int>(height));
+        }
+        window.swap_buffers();
+    }
+
+    // A summary for scripts and tests: what the session ended with.
+    const World& world = demo->world();
+    const Vec3 com = world.center_of_mass();
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016" PRIx64, world.state_hash());
+    nlohmann::ordered_json out = {
+        {"mesh", world.mesh().source}, {"particles", world.particle_count()}, {"ticks", world.ticks()},
+        {"sim_time", world.time()},   {"com", {com.x, com.y, com.z}},       {"status", world.status() == Status::Ok ? "ok" : "diverged"},
+        {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
+        {"params", nlohmann::json::parse(scene_to_json(world.params()))},
+    };
+    std::cout << out.dump() << std::endl;
+    return kOk;
+}
+
+}  // namespace softbody::app

@@ -1,0 +1,100 @@
+// The interactive session: the world being simulated, the fixed-tick clock that advances it,
+// the view of it (camera, overlays), the mouse's grab, the energy history and the last error.
+// No GLFW and no ImGui in here: the window and the panels drive it.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "physics/clock.h"
+#include "physics/params.h"
+#include "physics/world.h"
+#include "render/frame.h"
+
+namespace softbody::app {
+
+struct EnergySample {
+    double time, kinetic, gravity, elastic, total;
+};
+
+class Demo {
+public:
+    // Builds the first world; throws InputError when it cannot (the caller has nothing to show).
+    explicit Demo(const Params& params);
+
+    // --- Loading: never throws; on failure the current world stays and error() says why ----
+    bool load(const Params& params);           // a whole new set of parameters (and mesh)
+    bool load_scene_file(const std::string& path);
+    bool load_mesh_file(const std::string& path);
+    bool save_preset(const std::string& path, bool overwrite);  // false + error() on failure
+    void reset();
+
+    // Parameter edits from the UI: live keys apply now, the others at reset (see params.h).
+    void edit(const Params& params);
+    const Params& params() const { return world_->params(); }
+    bool reset_pending() const;  // a non-live key differs from what the body was built with
+
+    // --- Time ----------------------------------------------------------------------------------
+    // Feeds elapsed wall time (times time_scale) to the clock and runs the whole ticks due.
+    void advance(double wall_seconds);
+    void single_tick();
+    bool paused = false;
+    double time_scale = 1.0;
+    int max_ticks_per_frame = 8;
+
+    // --- What the panels show ------------------------------------------------------------------
+    World& world() { return *world_; }
+    const World& world() const { return *world_; }
+    int ticks_last_frame() const { return ticks_last_frame_; }
+    double physics_ms_per_tick() const { return physics_ms_per_tick_; }
+    const std::deque<EnergySample>& energy_history() const { return energy_; }
+    const std::string& error() const { return error_; }
+    void set_error(std::string message) { error_ = std::move(message); }
+    void clear_error() { error_.clear(); }
+    const std::string& source() const { return source_; }  // scene or mesh the world came from
+    void set_source(std::string source) { source_ = std::move(source); }
+
+    // --- View ----------------------------------------------------------------------------------
+    render::Camera camera;
+    render::Overlays overlays;
+    render::Appearance appearance;
+    bool follow = false;  // keep the camera's target over the centre of mass
+    // The view's shape: width / height, and the fraction of its width to move a framed body
+    // right by (to centre it in the part the panels leave free). Set by the window each frame.
+    void set_view(float aspect, float shift) {
+        view_aspect_ = aspect;
+        view_shift_ = shift;
+    }
+    // Points the camera at the body and the ground below it.
+    void frame_body();
+    render::Frame make_frame() const;
+
+    // --- Mouse ---------------------------------------------------------------------------------
+    // The particle drawn nearest to pixel (x, y) of a width x height view, within `radius` px.
+    std::optional<std::uint32_t> pick(float x, float y, float width, float height, float radius) const;
+    void begin_grab(std::uint32_t particle, float x, float y, float width, float height);
+    void drag(float x, float y, float width, float height);
+    void end_grab();
+    bool grabbing() const { return world_->grab().has_value(); }
+    void toggle_pin(std::uint32_t particle);
+
+private:
+    void after_load(const Params& params);
+    void sample_energy();
+
+    std::unique_ptr<World> world_;
+    Params built_with_;      // the params the current body was built from
+    FixedClock clock_;
+    std::string error_;
+    std::string source_;
+    std::deque<EnergySample> energy_;
+    int ticks_last_frame_ = 0;
+    double physics_ms_per_tick_ = 0.0;
+    float grab_depth_ = 0.0f;
+    float view_aspect_ = 1.6f, view_shift_ = 0.0f;  // distance along the view direction of the grab plane
+};
+
+}  // namespace softbody::app

@@ -1,0 +1,93 @@
+#include "gui/input.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cmath>
+
+#include "gui/demo.h"
+
+namespace softbody::app {
+
+UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float height, float ui_scale) {
+    UiRequests ui;
+    // Buttons act where the pointer last moved to (a script's "press" carries no position).
+    if (e.type == InputEvent::Type::Move) {
+        pointer_x_ = e.x;
+        pointer_y_ = e.y;
+    }
+    const float px = pointer_x_ * width, py = pointer_y_ * height;
+    switch (e.type) {
+        case InputEvent::Type::Press: {
+            if (drag_ != Drag::None) break;
+            drag_button_ = e.button;
+            last_x_ = px;
+            last_y_ = py;
+            if (e.button == 0) {
+                const auto particle = demo.pick(px, py, width, height, 18.0f * ui_scale);
+                if (particle && e.shift) {
+                    demo.toggle_pin(*particle);  // shift-click: pin or free
+                    drag_button_ = -1;
+                } else if (particle) {
+                    demo.begin_grab(*particle, px, py, width, height);
+                    drag_ = Drag::Grab;
+                } else {
+                    drag_ = Drag::Orbit;  // left-drag on empty space turns the view
+                }
+            } else if (e.button == 1) {
+                drag_ = e.ctrl || e.shift ? Drag::Pan : Drag::Orbit;
+            } else if (e.button == 2) {
+                drag_ = Drag::Pan;
+            }
+            break;
+        }
+        case InputEvent::Type::Move: {
+            const float dx = px - last_x_, dy = py - last_y_;
+            last_x_ = px;
+            last_y_ = py;
+            if (drag_ == Drag::Grab) {
+                demo.drag(px, py, width, height);
+            } else if (drag_ == Drag::Orbit) {
+                demo.camera.orbit(-dx * 0.006f, dy * 0.006f);
+            } else if (drag_ == Drag::Pan) {
+                // One pixel moves the target by the width a pixel covers at the target.
+                const float metres_per_pixel = 2.0f * demo.camera.distance * std::tan(0.5f * demo.camera.fov_y) / height;
+                demo.camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+            }
+            break;
+        }
+        case InputEvent::Type::Release:
+            if (e.button != drag_button_) break;
+            if (drag_ == Drag::Grab) demo.end_grab();
+            drag_ = Drag::None;
+            drag_button_ = -1;
+            break;
+        case InputEvent::Type::Scroll:
+            demo.camera.zoom(std::pow(0.88f, e.scroll));
+            break;
+        case InputEvent::Type::Key:
+            switch (e.key) {
+                case GLFW_KEY_SPACE: demo.paused = !demo.paused; break;
+                case GLFW_KEY_N:
+                case GLFW_KEY_PERIOD:
+                    demo.paused = true;
+                    demo.single_tick();
+                    break;
+                case GLFW_KEY_R: demo.reset(); break;
+                case GLFW_KEY_F: demo.frame_body(); break;
+                case GLFW_KEY_P: demo.overlays.particles = !demo.overlays.particles; break;
+                case GLFW_KEY_S: demo.overlays.springs = !demo.overlays.springs; break;
+                case GLFW_KEY_C: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;
+                case GLFW_KEY_V: demo.overlays.velocities = !demo.overlays.velocities; break;
+                case GLFW_KEY_H:
+                case GLFW_KEY_F1: ui.toggle_help = true; break;
+                case GLFW_KEY_ESCAPE: ui.close_help = true; break;
+                case GLFW_KEY_TAB: ui.toggle_panels = true; break;
+                default: break;
+            }
+            break;
+    }
+    return ui;
+}
+
+}  // namespace softbody::app

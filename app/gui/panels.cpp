@@ -1,0 +1,439 @@
+#include "gui/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "cli.h"
+#include "gui/demo.h"
+#include "physics/pair_forces.h"
+#include "physics/scene_io.h"
+
+namespace softbody::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Slider ranges: where a value is useful to drag, inside the valid range params.h enforces.
+struct SliderRange {
+    const char* key;
+    float min, max;
+    bool logarithmic;
+};
+constexpr SliderRange kSliders[] = {
+    {"scale", 0.05f, 10.0f, true},       {"init_height", 0.0f, 10.0f, false},
+    {"initial_velocity", -10.0f, 10.0f, false}, {"particle_mass", 0.001f, 100.0f, true},
+    {"stiffness", 0.0f, 1000.0f, true},  {"damping", 0.0f, 10.0f, true},
+    {"gravity", -30.0f, 30.0f, false},   {"dt", 0.001f, 0.05f, true},
+    {"drag_coefficient", 0.0f, 2.0f, false}, {"air_density", 0.0f, 1000.0f, true},
+    {"ground_height", -2.0f, 2.0f, false}, {"restitution", 0.0f, 1.0f, false},
+    {"static_friction", 0.0f, 2.0f, false}, {"dynamic_friction", 0.0f, 2.0f, false},
+};
+
+const SliderRange* slider_range(std::string_view key) {
+    for (const auto& r : kSliders) {
+        if (key == r.key) return &r;
+    }
+    return nullptr;
+}
+
+std::vector<std::string> list_files(const std::string& folder, std::initializer_list<const char*> extensions) {
+    std::vector<std::string> files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string ext = entry.path().extension().string();
+        for (const char* wanted : extensions) {
+            if (ext == wanted) files.push_back(entry.path().string());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+std::string presets_folder() {
+    const char* data = std::getenv("XDG_DATA_HOME");
+    const char* home = std::getenv("HOME");
+    if (data && *data) return std::string(data) + "/softbody/presets";
+    if (home && *home) return std::string(home) + "/.local/share/softbody/presets";
+    return "presets";
+}
+
+void tooltip(const ParamInfo& info) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    ImGui::TextUnformatted(std::string(info.summary).c_str());
+    if (!info.unit.empty()) ImGui::Text("unit: %s", std::string(info.unit).c_str());
+    if (!info.equation.empty()) ImGui::Text("enters: %s", std::string(info.equation).c_str());
+    if (info.type == ParamType::Float || info.type == ParamType::Int || info.type == ParamType::Vec3) {
+        ImGui::Text("valid: %s%g .. %g", info.min_exclusive ? "above " : "", info.min, info.max);
+    }
+    ImGui::TextDisabled(info.live ? "applies at once" : "applies on reset (it changes the particles)");
+    ImGui::TextDisabled("right-click: back to the default");
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
+std::string memory_text(std::size_t n) {
+    // State: x, x_prev, v, rest, forces, four stage accelerations and scratch: about 30 floats a
+    // particle; the fast kernel's tile buffers: 6 x 256 floats per tile of 256 x 256 pairs.
+    const double blocks = std::ceil(double(n) / double(PairForceKernel::kBlock));
+    const double bytes = double(n) * 30.0 * 4.0 + blocks * (blocks + 1.0) / 2.0 * 6.0 * 256.0 * 4.0;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
+    return text;
+}
+
+}  // namespace
+
+Panels::Panels(float ui_scale) : scale_(ui_scale) {
+    scenes_ = list_files(assets_dir() + "/scenes", {".json"});
+    meshes_ = list_files(assets_dir() + "/meshes", {".obj", ".off"});
+    std::snprintf(preset_path_, sizeof preset_path_, "%s/my_scene.json", presets_folder().c_str());
+}
+
+void Panels::draw(Demo& demo, float fps) {
+    error_banner(demo);
+    if (show_help) help();
+    if (!show_panels) return;
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 8 * scale_, viewport->WorkPos.y + 8 * scale_), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(360 * scale_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
+    ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::PushItemWidth(-150 * scale_);
+    if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) simulation(demo, fps);
+    if (ImGui::CollapsingHeader("Stability", ImGuiTreeNodeFlags_DefaultOpen)) stability(demo);
+    if (ImGui::CollapsingHeader("Energy", ImGuiTreeNodeFlags_DefaultOpen)) energy(demo);
+    if (ImGui::CollapsingHeader("Parameters")) parameters(demo);
+    if (ImGui::CollapsingHeader("Mesh")) mesh(demo);
+    if (ImGui::CollapsingHeader("Display")) display(demo);
+    if (ImGui::CollapsingHeader("Presets")) presets(demo);
+    ImGui::PopItemWidth();
+    ImGui::Separator();
+    ImGui::TextDisabled("H: help   Space: pause   R: reset   Tab: hide panels");
+    ImGui::End();
+}
+
+void Panels::simulation(Demo& demo, float fps) {
+    const World& world = demo.world();
+    const ImVec2 button(100 * scale_, 0);
+    if (ImGui::Button(demo.paused ? "Play" : "Pause", button)) demo.paused = !demo.paused;
+    ImGui::SameLine();
+    if (ImGui::Button("Step", button)) {
+        demo.paused = true;
+        demo.single_tick();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Reset", button)) demo.reset();
+    float time_scale = static_cast<float>(demo.time_scale);
+    if (ImGui::SliderFloat("time scale", &time_scale, 0.05f, 2.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
+        demo.time_scale = time_scale;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Slow motion below 1: fewer ticks per second of wall time; dt stays fixed.");
+    ImGui::SliderInt("max ticks/frame", &demo.max_ticks_per_frame, 1, 32);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("A slow frame runs at most this many ticks; the rest of its time is dropped.");
+    ImGui::Text("tick %llu   t = %.2f s", static_cast<unsigned long long>(world.ticks()), world.time());
+    ImGui::Text("ticks this frame %d   physics %.2f ms/tick", demo.ticks_last_frame(), demo.physics_ms_per_tick());
+    ImGui::Text("render %.0f FPS   %d threads", fps, world.threads());
+    if (world.status() != Status::Ok) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "diverged: reset to go on");
+    else if (demo.paused) ImGui::TextDisabled("paused");
+}
+
+void Panels::stability(Demo& demo) {
+    const Stability s = demo.world().stability();
+    const float fraction = static_cast<float>(s.h_omega / s.limit);
+    const ImVec4 colour = !s.stable ? ImVec4(0.90f, 0.25f, 0.20f, 1.0f)
+                          : fraction > 0.9f ? ImVec4(0.95f, 0.70f, 0.20f, 1.0f)
+                                            : ImVec4(0.30f, 0.75f, 0.40f, 1.0f);
+    char label[64];
+    std::snprintf(label, sizeof label, "h*omega %.2f of %.2f", s.h_omega, s.limit);
+    ImGui::PushStyleColor(ImGuiCol_PlotHistogram, colour);
+    ImGui::ProgressBar(std::min(fraction, 1.0f), ImVec2(-1, 0), label);
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("The fastest mode of the spring network (omega = %.1f rad/s) against the step h = %.4f s.\n"
+                          "Verlet is stable while sqrt(h^2 omega^2 + 2 h gamma) < 2, i.e. N (k h^2 + 2 c h) < 4 m.",
+                          s.omega_max, s.h);
+    }
+    ImGui::Text("substeps %d (needed %d)   growth %.3f", s.substeps, s.substeps_needed, s.growth);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("growth: how much the fastest-growing mode is amplified per step (above 1 it explodes)");
+    if (!s.stable) {
+        ImGui::TextColored(colour, "Unstable: this will explode.");
+    } else if (fraction > 0.9f) {
+        ImGui::TextColored(colour, "Close to the limit.");
+    }
+    Params params = demo.params();
+    if (ImGui::Checkbox("automatic substeps", &params.auto_substeps)) demo.edit(params);
+    if (!s.stable && s.substeps_needed > 0) {
+        ImGui::SameLine();
+        char fix[48];
+        std::snprintf(fix, sizeof fix, "Use %d substeps", s.substeps_needed);
+        if (ImGui::SmallButton(fix)) {
+            params.substeps = s.substeps_needed;
+            demo.edit(params);
+        }
+    }
+}
+
+void Panels::energy(Demo& demo) {
+    const auto& history = demo.energy_history();
+    if (history.size() < 2) {
+        ImGui::TextDisabled("no samples yet");
+        return;
+    }
+    double lo = 1e300, hi = -1e300;
+    for (const auto& s : history) {
+        for (double v : {s.kinetic, s.gravity, s.elastic, s.total}) {
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+    }
+    if (hi - lo < 1e-9) hi = lo + 1.0;
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 120 * scale_);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
+    const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
+    const ImU32 colours[4] = {IM_COL32(90, 170, 255, 255), IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
+                              IM_COL32(240, 240, 240, 255)};
+    for (int series = 0; series < 4; ++series) {
+        std::vector<ImVec2> points;
+        points.reserve(history.size());
+        for (const auto& s : history) {
+            const double v = series == 0 ? s.kinetic : series == 1 ? s.gravity : series == 2 ? s.elastic : s.total;
+            points.emplace_back(origin.x + float((s.time - t0) / (t1 - t0)) * size.x,
+                                origin.y + size.y - float((v - lo) / (hi - lo)) * size.y);
+        }
+        draw->AddPolyline(points.data(), static_cast<int>(points.size()), colours[series], 0, series == 3 ? 2.0f : 1.5f);
+    }
+    ImGui::Dummy(size);
+    const char* names[4] = {"kinetic", "gravity", "elastic", "total"};
+    const auto& last = history.back();
+    const double values[4] = {last.kinetic, last.gravity, last.elastic, last.total};
+    for (int series = 0; series < 4; ++series) {
+        if (series % 2) ImGui::SameLine(180 * scale_);
+        ImGui::TextColored(ImColor(colours[series]), "%s %.1f J", names[series], values[series]);
+    }
+    ImGui::TextDisabled("last %.0f s, from %.1f to %.1f J", t1 - t0, lo, hi);
+}
+
+void Panels::parameters(Demo& demo) {
+    Params params = demo.params();
+    bool changed = false;
+    const Params defaults;
+    for (const ParamInfo& info : param_table()) {
+        const std::string key(info.key);
+        if (info.type == ParamType::String || info.type == ParamType::IndexList) continue;  // Mesh panel / pins
+        const std::string label = info.live ? key : key + " *";
+        bool edited = false;
+        const SliderRange* range = slider_range(key);
+        const ImGuiSliderFlags flags = range && range->logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
+        switch (info.type) {
+            case ParamType::Float: {
+                float value = std::stof(param_text(params, key));
+                edited = ImGui::SliderFloat(label.c_str(), &value, range->min, range->max, "%.4g", flags);
+                if (edited) {
+                    const double lowest = info.min_exclusive ? info.min + 1e-6 : info.min;
+                    char text[32];
+                    std::snprintf(text, sizeof text, "%.9g", std::clamp(double(value), lowest, info.max));
+                    set_param(params, key, text);
+                }
+                break;
+            }
+            case ParamType::Int: {
+                int value = std::stoi(param_text(params, key));
+                edited = ImGui::SliderInt(label.c_str(), &value, 1, 64);
+                if (edited) set_param(params, key, std::to_string(std::max(1, value)));
+                break;
+            }
+            case ParamType::Bool: {
+                bool value = param_text(params, key) == "true";
+                edited = ImGui::Checkbox(label.c_str(), &value);
+                if (edited) set_param(params, key, value ? "true" : "false");
+                break;
+            }
+            case ParamType::Vec3: {
+                Vec3& v = key == "gravity" ? params.gravity : params.initial_velocity;
+                float values[3] = {v.x, v.y, v.z};
+                edited = ImGui::DragFloat3(label.c_str(), values, 0.05f, range->min, range->max, "%.2f");
+                if (edited) v = {values[0], values[1], values[2]};
+                break;
+            }
+            case ParamType::Integrator: {
+                int current = static_cast<int>(params.integrator);
+                const char* names = "verlet\0symplectic_euler\0explicit_euler\0rk4\0";
+                edited = ImGui::Combo(label.c_str(), &current, names);
+                if (edited) params.integrator = static_cast<Integrator>(current);
+                break;
+            }
+            default: break;
+        }
+        tooltip(info);
+        if (ImGui::IsItemClicked(ImGuiMouseButton_Right)) {
+            set_param(params, key, param_text(defaults, key));
+            edited = true;
+        }
+        changed |= edited;
+    }
+    ImGui::Text("pinned: %zu vertices", params.pinned.size());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("free all")) {
+        params.pinned.clear();
+        changed = true;
+    }
+    if (changed) demo.edit(params);
+    ImGui::TextDisabled("* applies on reset");
+    if (demo.reset_pending()) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("reset now")) demo.reset();
+    }
+    if (ImGui::Button("All to defaults")) {
+        Params fresh;
+        fresh.mesh = params.mesh;
+        demo.edit(fresh);
+    }
+    ImGui::SameLine();
+    ImGui::TextDisabled("(Listing 8's values; keeps the mesh)");
+}
+
+void Panels::mesh(Demo& demo) {
+    const World& world = demo.world();
+    const Mesh& mesh = world.mesh();
+    ImGui::TextWrapped("%s", fs::path(mesh.source).filename().string().c_str());
+    ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+    ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), world.spring_count());
+    ImGui::Text("memory %s", memory_text(world.particle_count()).c_str());
+    if (ImGui::BeginCombo("scene", fs::path(demo.source()).filename().string().c_str())) {
+        for (const auto& scene : scenes_) {
+            if (ImGui::Selectable(fs::path(scene).stem().string().c_str())) demo.load_scene_file(scene);
+        }
+        ImGui::EndCombo();
+    }
+    if (ImGui::BeginCombo("mesh", fs::path(mesh.source).filename().string().c_str())) {
+        for (const auto& file : meshes_) {
+            if (ImGui::Selectable(fs::path(file).filename().string().c_str())) demo.load_mesh_file(file);
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::InputTextWithHint("##open", "path to an .obj or .off", open_path_, sizeof open_path_);
+    ImGui::SameLine();
+    if (ImGui::Button("Open") && open_path_[0]) demo.load_mesh_file(open_path_);
+    ImGui::TextDisabled("or drop a file on the window");
+}
+
+void Panels::display(Demo& demo) {
+    auto& o = demo.overlays;
+    auto& a = demo.appearance;
+    ImGui::Checkbox("particles (P)", &o.particles);
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("springs (S)", &o.springs);
+    ImGui::Checkbox("pins", &o.pins);
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("centre of mass (C)", &o.center_of_mass);
+    ImGui::Checkbox("velocities (V)", &o.velocities);
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("shadows", &a.shadows);
+    ImGui::Checkbox("ground and grid", &a.ground);
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("follow body", &demo.follow);
+    int style = static_cast<int>(a.body);
+    if (ImGui::Combo("body", &style, "solid\0ghost (see-through)\0hidden\0")) a.body = static_cast<render::BodyStyle>(style);
+    ImGui::ColorEdit3("colour", &a.body_color.x, ImGuiColorEditFlags_NoInputs);
+    int samples_index = a.samples >= 4 ? 2 : a.samples >= 2 ? 1 : 0;
+    if (ImGui::Combo("anti-aliasing", &samples_index, "off\0" "2x\0" "4x\0")) a.samples = samples_index == 0 ? 1 : samples_index == 1 ? 2 : 4;
+    int springs = static_cast<int>(a.max_springs);
+    if (ImGui::SliderInt("springs drawn", &springs, 50, 5000, "%d", ImGuiSliderFlags_Logarithmic)) a.max_springs = static_cast<std::size_t>(springs);
+}
+
+void Panels::presets(Demo& demo) {
+    ImGui::InputText("##preset", preset_path_, sizeof preset_path_);
+    if (ImGui::Button("Save")) {
+        std::error_code ec;
+        const fs::path path(preset_path_);
+        if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
+        if (fs::exists(path, ec)) confirm_overwrite_ = preset_path_;
+        else demo.save_preset(preset_path_, false);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) demo.load_scene_file(preset_path_);
+    ImGui::SameLine();
+    ImGui::TextDisabled("JSON scene files");
+    if (!confirm_overwrite_.empty()) ImGui::OpenPopup("Overwrite?");
+    if (ImGui::BeginPopupModal("Overwrite?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("%s already exists.\nReplace it with the current parameters?", confirm_overwrite_.c_str());
+        if (ImGui::Button("Replace")) {
+            demo.save_preset(confirm_overwrite_, true);
+            confirm_overwrite_.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) {
+            confirm_overwrite_.clear();
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndPopup();
+    }
+}
+
+void Panels::help() {
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x * 0.5f, viewport->WorkPos.y + viewport->WorkSize.y * 0.5f),
+                            ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::Begin("Controls", &show_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+    const char* rows[][2] = {
+        {"left-drag on the body", "grab a particle and pull it"},
+        {"shift + left-click", "pin or free a particle"},
+        {"left/right-drag", "orbit the camera"},
+        {"middle-drag, ctrl + right-drag", "pan"},
+        {"wheel", "zoom"},
+        {"F", "frame the body"},
+        {"Space", "pause / play"},
+        {"N or .", "one tick"},
+        {"R", "reset"},
+        {"P  S  C  V", "particles, springs, centre of mass, velocities"},
+        {"Tab", "hide / show the panels"},
+        {"H, F1 / Esc", "this help / close it"},
+        {"drop a file", "load an .obj or .off mesh"},
+    };
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+        for (const auto& row : rows) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextUnformatted(row[0]);
+            ImGui::TableSetColumnIndex(1);
+            ImGui::TextUnformatted(row[1]);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::End();
+}
+
+void Panels::error_banner(Demo& demo) {
+    if (demo.error().empty()) return;
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
+    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.45f, 0.08f, 0.08f, 0.94f));
+    ImGui::Begin("##error", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(demo.error().c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::SmallButton("Dismiss")) demo.clear_error();
+    if (demo.world().status() != Status::Ok) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Reset")) {
+            demo.reset();
+            demo.clear_error();
+        }
+    }
+    ImGui::End();
+    ImGui::PopStyleColor();
+}
+
+}  // namespace softbody::app

@@ -1,0 +1,42 @@
+// The Dear ImGui panels of the demo: Simulation, Parameters, Mesh, Display, Energy, Stability,
+// Presets, and the help overlay. They read and edit the Demo; they own only UI state.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace softbody::app {
+
+class Demo;
+
+class Panels {
+public:
+    explicit Panels(float ui_scale);
+
+    // Draws everything for this frame (between the window's begin/end_ui_frame).
+    void draw(Demo& demo, float fps);
+
+    float width() const { return show_panels ? 376.0f * scale_ : 0.0f; }  // pixels the panel covers
+
+    bool show_help = false;
+    bool show_panels = true;
+
+private:
+    void simulation(Demo& demo, float fps);
+    void parameters(Demo& demo);
+    void mesh(Demo& demo);
+    void display(Demo& demo);
+    void energy(Demo& demo);
+    void stability(Demo& demo);
+    void presets(Demo& demo);
+    void help();
+    void error_banner(Demo& demo);
+
+    float scale_;
+    std::vector<std::string> scenes_, meshes_;  // bundled assets
+    char open_path_[1024] = {};
+    char preset_path_[1024] = {};
+    std::string confirm_overwrite_;             // path awaiting "overwrite?" (empty: none)
+};
+
+}  // namespace softbody::app

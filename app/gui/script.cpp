@@ -1,0 +1,114 @@
+#include "gui/script.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "physics/error.h"
+
+namespace softbody::app {
+
+namespace {
+
+const std::map<std::string, int>& key_names() {
+    static const std::map<std::string, int> keys = {
+        {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"r", GLFW_KEY_R},
+        {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
+        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
+    };
+    return keys;
+}
+
+int button_number(const std::string& name) {
+    if (name == "left") return 0;
+    if (name == "right") return 1;
+    if (name == "middle") return 2;
+    return -1;
+}
+
+bool to_float(const std::string& text, float& out) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+    return ec == std::errc() && end == text.data() + text.size() && std::isfinite(out);
+}
+
+}  // namespace
+
+std::vector<ScriptCommand> load_script(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open the script");
+    std::vector<ScriptCommand> script;
+    std::string text;
+    std::size_t line_number = 0;
+    while (std::getline(in, text)) {
+        ++line_number;
+        if (const auto hash = text.find('#'); hash != std::string::npos) text.resize(hash);
+        std::istringstream line(text);
+        std::vector<std::string> words;
+        for (std::string word; line >> word;) words.push_back(word);
+        if (words.empty()) continue;
+        auto fail = [&](const std::string& what) -> void {
+            throw InputError(path + ":" + std::to_string(line_number) + ": " + what);
+        };
+        ScriptCommand command;
+        command.line = line_number;
+        const auto [end, ec] = std::from_chars(words[0].data(), words[0].data() + words[0].size(), command.frame);
+        if (ec != std::errc() || end != words[0].data() + words[0].size() || command.frame < 0) {
+            fail("expected a frame number first, got '" + words[0] + "'");
+        }
+        if (words.size() < 2) fail("expected a command after the frame number");
+        const std::string verb = words[1];
+        command.args.assign(words.begin() + 2, words.end());
+        const auto& args = command.args;
+        InputEvent& e = command.input;
+        if (verb == "move") {
+            e.type = InputEvent::Type::Move;
+            if (args.size() != 2 || !to_float(args[0], e.x) || !to_float(args[1], e.y)) fail("move needs X Y (fractions of the view)");
+            command.verb = "input";
+        } else if (verb == "press" || verb == "release") {
+            e.type = verb == "press" ? InputEvent::Type::Press : InputEvent::Type::Release;
+            if (args.empty() || (e.button = button_number(args[0])) < 0) fail(verb + " needs left, right or middle");
+            for (std::size_t a = 1; a < args.size(); ++a) {
+                if (args[a] == "shift") e.shift = true;
+                else if (args[a] == "ctrl") e.ctrl = true;
+                else fail("unknown modifier '" + args[a] + "' (shift or ctrl)");
+            }
+            command.verb = "input";
+        } else if (verb == "scroll") {
+            e.type = InputEvent::Type::Scroll;
+            if (args.size() != 1 || !to_float(args[0], e.scroll)) fail("scroll needs one number");
+            command.verb = "input";
+        } else if (verb == "key") {
+            e.type = InputEvent::Type::Key;
+            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period r f h f1 p s c v tab escape");
+            e.key = key_names().at(args[0]);
+            command.verb = "input";
+        } else if (verb == "set") {
+            if (args.size() != 2) fail("set needs KEY VALUE");
+            command.verb = verb;
+        } else if (verb == "load_scene" || verb == "load_mesh") {
+            if (args.size() != 1) fail(verb + " needs a path");
+            command.verb = verb;
+        } else if (verb == "save_preset") {
+            if (args.empty() || args.size() > 2 || (args.size() == 2 && args[1] != "overwrite")) {
+                fail("save_preset needs a path, optionally followed by 'overwrite'");
+            }
+            command.verb = verb;
+        } else if (verb == "reset" || verb == "pause" || verb == "play") {
+            if (!args.empty()) fail(verb + " takes no arguments");
+            command.verb = verb;
+        } else {
+            fail("unknown command '" + verb + "'");
+        }
+        script.push_back(std::move(command));
+    }
+    std::stable_sort(script.begin(), script.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
+    return script;
+}
+
+}  // namespace softbody::app

@@ -1,0 +1,37 @@
+// Scripted input for testing the app without a person: a text file of timed events.
+//
+//   # frame  command   arguments
+//   10       move      0.50 0.55        pointer to a fraction of the view (x right, y down)
+//   11       press     left [shift|ctrl]
+//   40       release   left
+//   50       scroll    -2               wheel clicks
+//   60       key       space            space n r f h p s c v tab escape
+//   70       set       stiffness 40     as --set, or a slider
+//   80       load_scene assets/scenes/pig.json
+//   81       load_mesh  my.obj
+//   90       save_preset out.json [overwrite]
+//   95       reset | pause | play
+//
+// Events run at the start of their frame, in file order.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gui/input.h"
+
+namespace softbody::app {
+
+struct ScriptCommand {
+    std::int64_t frame = 0;
+    std::string verb;  // "input" for mouse/keyboard events, else the command
+    InputEvent input;
+    std::vector<std::string> args;
+    std::size_t line = 0;
+};
+
+// Throws InputError naming the file and line of anything it cannot read.
+std::vector<ScriptCommand> load_script(const std::string& path);
+
+}  // namespace softbody::app

@@ -1,0 +1,206 @@
+#include "overlays.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace softbody::render {
+
+namespace {
+
+// Overlay colours, sRGB.
+constexpr glm::vec4 kParticleColor{0.93f, 0.95f, 0.98f, 1.0f};
+constexpr glm::vec4 kPinColor{0.86f, 0.12f, 0.20f, 1.0f};
+constexpr glm::vec4 kSpringRest{0.20f, 0.23f, 0.29f, 0.85f};
+constexpr glm::vec4 kSurfaceSpringRest{0.98f, 0.96f, 0.90f, 0.75f};
+constexpr glm::vec4 kSpringStretched{0.92f, 0.10f, 0.08f, 1.0f};
+constexpr glm::vec4 kSpringCompressed{0.08f, 0.38f, 1.00f, 1.0f};
+constexpr glm::vec4 kVelocityColor{0.10f, 0.78f, 0.52f, 0.9f};
+constexpr glm::vec4 kComVelocityColor{0.02f, 0.50f, 0.30f, 1.0f};
+constexpr glm::vec4 kComColor{1.00f, 0.80f, 0.10f, 1.0f};
+constexpr glm::vec4 kComLine{0.12f, 0.12f, 0.14f, 0.75f};
+constexpr float kStrainForFullColor = 0.15f;  // |l / l0 - 1| that gets the full colour
+
+glm::vec4 strain_color(const glm::vec4& rest, float strain) {
+    const float s = std::clamp(std::abs(strain) / kStrainForFullColor, 0.0f, 1.0f);
+    return glm::mix(rest, strain > 0.0f ? kSpringStretched : kSpringCompressed, s);
+}
+
+// A fixed sequence (64-bit LCG, Knuth's MMIX constants): the same sample on every run.
+struct Sequence {
+    std::uint64_t state;
+    std::uint32_t next(std::uint32_t bound) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<std::uint32_t>((state >> 33) % bound);
+    }
+};
+
+}  // namespace
+
+BodyShape measure_body(std::span<const glm::vec3> particles, const Vec3Span& rest) {
+    BodyShape shape;
+    if (particles.empty()) return shape;
+    glm::dvec3 sum(0.0);
+    shape.low = shape.high = particles[0];
+    for (const glm::vec3& p : particles) {
+        sum += glm::dvec3(p);
+        shape.low = glm::min(shape.low, p);
+        shape.high = glm::max(shape.high, p);
+    }
+    shape.centre_of_mass = glm::vec3(sum / double(particles.size()));
+    for (const glm::vec3& p : particles) shape.radius = std::max(shape.radius, glm::length(p - shape.centre_of_mass));
+    shape.rest_radius = shape.radius;
+    if (rest.size == particles.size()) {
+        glm::dvec3 rest_sum(0.0);
+        for (std::size_t i = 0; i < rest.size; ++i) rest_sum += glm::dvec3(rest[i]);
+        const glm::vec3 c(rest_sum / double(rest.size));
+        float r = 0.0f;
+        for (std::size_t i = 0; i < rest.size; ++i) r = std::max(r, glm::length(rest[i] - c));
+        shape.rest_radius = r;
+    }
+    return shape;
+}
+
+std::vector<SpringSample> sample_springs(const Mesh& mesh, std::size_t budget) {
+    std::vector<SpringSample> springs;
+    const auto n = static_cast<std::uint32_t>(mesh.particle_count());
+    auto ordered = [](std::uint32_t a, std::uint32_t b) { return a < b ? std::make_pair(a, b) : std::make_pair(b, a); };
+
+    // Surface edges, in the order the triangles give them.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> taken;
+    const auto& t = mesh.triangles;
+    const auto& rv = mesh.render_vertices;
+    for (std::size_t k = 0; k + 2 < t.size(); k += 3) {
+        for (std::size_t e = 0; e < 3; ++e) {
+            const auto pair = ordered(rv[t[k + e]].particle, rv[t[k + (e + 1) % 3]].particle);
+            if (pair.first != pair.second && taken.insert(pair).second) edges.push_back(pair);
+        }
+    }
+
+    const std::uint64_t total = std::uint64_t(n) * (n > 0 ? n - 1 : 0) / 2;
+    if (total <= 2 * budget) {
+        for (std::uint32_t i = 0; i < n; ++i) {
+            for (std::uint32_t j = i + 1; j < n; ++j) springs.push_back({i, j, taken.count({i, j}) > 0});
+        }
+        return springs;
+    }
+    // Every k-th edge when there are more than the cap.
+    const std::size_t stride = (edges.size() + kMaxSurfaceSprings - 1) / kMaxSurfaceSprings;
+    for (std::size_t e = 0; e < edges.size(); e += std::max<std::size_t>(stride, 1)) {
+        springs.push_back({edges[e].first, edges[e].second, true});
+    }
+    // Then pairs from a fixed pseudo-random sequence.
+    Sequence sequence{0x5eed5eedULL};
+    std::size_t others = 0;
+    for (std::size_t attempts = 0; others < budget && attempts < budget * 20; ++attempts) {
+        const std::uint32_t i = sequence.next(n), j = sequence.next(n);
+        if (i == j) continue;
+        const auto pair = ordered(i, j);
+        if (taken.insert(pair).second) {
+            springs.push_back({pair.first, pair.second, false});
+            ++others;
+        }
+    }
+    return springs;
+}
+
+void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, const BodyShape& shape,
+                           OverlayGeometry& out) {
+    out.lines.clear();
+    out.spheres.clear();
+    out.lines_on_top.clear();
+    out.spheres_on_top.clear();
+    const BodyView& body = frame.body;
+    const Overlays& on = frame.overlays;
+    if (!body.mesh || x.empty()) return;
+    const std::size_t n = x.size();
+
+    // Marker sizes follow the body's size at rest and its particle spacing.
+    const float r_body = std::max(shape.rest_radius, 1e-3f);
+    const float spacing = r_body * std::sqrt(12.566f / float(n));  // surface area shared out
+    const float particle_radius = std::min(0.05f * r_body, 0.22f * spacing);
+
+    if (on.springs) {
+        const std::size_t triangles = body.mesh->triangle_count();
+        if (spring_mesh_ != body.mesh || spring_mesh_particles_ != n || spring_mesh_triangles_ != triangles ||
+            spring_budget_ != frame.appearance.max_springs) {
+            springs_ = sample_springs(*body.mesh, frame.appearance.max_springs);
+            spring_mesh_ = body.mesh;
+            spring_mesh_particles_ = n;
+            spring_mesh_triangles_ = triangles;
+            spring_budget_ = frame.appearance.max_springs;
+        }
+        const bool strain = body.rest_positions.size == n;
+        for (const SpringSample& spring : springs_) {
+            // Surface springs light and fine: they outline; the ones across the body stand out.
+            const glm::vec4 rest = spring.surface ? kSurfaceSpringRest : kSpringRest;
+            glm::vec4 color = rest;
+            if (strain) {
+                const float l0 = glm::length(body.rest_positions[spring.j] - body.rest_positions[spring.i]);
+                if (l0 > 0.0f) color = strain_color(rest, glm::length(x[spring.j] - x[spring.i]) / l0 - 1.0f);
+            }
+            out.lines.push_back({x[spring.i], x[spring.j], color, spring.surface ? 1.0f : 1.6f});
+        }
+    }
+
+    if (on.particles) {
+        // When no surface is drawn the particles are the body, and take its colour.
+        const bool are_body = frame.appearance.body == BodyStyle::Hidden || body.mesh->triangle_count() == 0;
+        const glm::vec4 color = are_body ? glm::vec4(frame.appearance.body_color, 1.0f) : kParticleColor;
+        const float radius = are_body ? 1.4f * particle_radius : particle_radius;
+        for (std::size_t i = 0; i < n; ++i) out.spheres.push_back({x[i], radius, color});
+    }
+
+    if (on.pins && body.inverse_masses.size() == n) {
+        const float pin_radius = std::max(1.5f * particle_radius, 0.03f * r_body);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (body.inverse_masses[i] != 0.0f) continue;
+            out.spheres.push_back({x[i], pin_radius, kPinColor});
+            // A short stem upward: the particle is held from above.
+            out.lines.push_back({x[i], x[i] + glm::vec3(0.0f, 0.0f, 3.0f * pin_radius), glm::vec4(0.25f, 0.25f, 0.28f, 1.0f), 2.0f});
+        }
+    }
+
+    if (on.velocities && body.velocities.size == n) {
+        const Camera& cam = frame.camera;
+        const float scale = frame.appearance.velocity_scale;
+        auto arrow = [&](const glm::vec3& from, const glm::vec3& v, const glm::vec4& color, float width,
+                         std::vector<LineInstance>& lines) {
+            const glm::vec3 tip = from + v * scale;
+            const float len = glm::length(tip - from);
+            if (len < 0.02f * r_body) return;
+            const glm::vec3 dir = (tip - from) / len;
+            glm::vec3 side = glm::cross(dir, glm::normalize(tip - cam.eye()));
+            side = glm::dot(side, side) > 1e-8f ? glm::normalize(side) : cam.right();
+            const float head = std::min(0.3f * len, 0.15f * r_body);
+            lines.push_back({from, tip, color, width});
+            lines.push_back({tip, tip - dir * head + side * (0.5f * head), color, width});
+            lines.push_back({tip, tip - dir * head - side * (0.5f * head), color, width});
+        };
+        // A sample of the particles' own velocities, thin...
+        const std::size_t budget = std::max<std::size_t>(1, frame.appearance.max_arrows);
+        const std::size_t stride = (n + budget - 1) / budget;
+        glm::dvec3 mean(0.0);
+        for (std::size_t i = 0; i < n; ++i) mean += glm::dvec3(body.velocities[i]);
+        for (std::size_t i = 0; i < n; i += stride) arrow(x[i], body.velocities[i], kVelocityColor, 1.6f, out.lines);
+        // ...and the centre of mass's, bold and always in view.
+        arrow(shape.centre_of_mass, glm::vec3(mean / double(n)), kComVelocityColor, 3.5f, out.lines_on_top);
+    }
+
+    if (on.center_of_mass) {
+        const glm::vec3 c = shape.centre_of_mass;
+        const float r = 0.06f * r_body;
+        out.spheres_on_top.push_back({c, r, kComColor});
+        if (frame.appearance.ground) {
+            // A plumb line to the floor and a cross where it lands: the height at a glance.
+            const glm::vec3 foot(c.x, c.y, frame.appearance.ground_height);
+            out.lines_on_top.push_back({c, foot, kComLine, 1.5f});
+            const float a = 2.0f * r;
+            out.lines_on_top.push_back({foot - glm::vec3(a, 0, 0), foot + glm::vec3(a, 0, 0), kComLine, 2.0f});
+            out.lines_on_top.push_back({foot - glm::vec3(0, a, 0), foot + glm::vec3(0, a, 0), kComLine, 2.0f});
+        }
+    }
+}
+
+}  // namespace softbody::render

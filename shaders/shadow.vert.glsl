@@ -1,0 +1,6 @@
+#version 330 core
+// Depth of the body as the sun sees it.
+uniform mat4 u_shadow_view_projection;
+layout(location = 0) in vec3 a_position;
+
+void main() { gl_Position = u_shadow_view_projection * vec4(a_position, 1.0); }

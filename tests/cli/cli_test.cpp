@@ -1,0 +1,361 @@
+// `softbody simulate` from the outside: each test runs the built executable in a child process
+// (posix_spawn, stdout and stderr to files) and checks its exit code, its JSON summary and its
+// messages. Meshes and scenes are written to a temporary folder by the tests themselves.
+//
+// Exit codes: 0 ok, 2 bad input (one line on stderr naming the problem), 3 diverged.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+class TempDir {
+public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        std::random_device random;
+        path_ = fs::temp_directory_path() / ("softbody-cli-test-" + std::to_string(::getpid()) + "-" +
+                                             std::to_string(counter++) + "-" + std::to_string(random()));
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream out(file(name), std::ios::binary);
+        out << text;
+        return file(name);
+    }
+
+private:
+    fs::path path_;
+};
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct Result {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+// Runs softbody with the arguments; stdout and stderr are captured through files so that
+// neither can fill a pipe and stall the child.
+Result run(const std::vector<std::string>& args) {
+    TempDir io;
+    const std::string out_path = io.file("stdout"), err_path = io.file("stderr");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> all{SOFTBODY_EXE};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& arg : all) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    Result result;
+    const int spawned = posix_spawn(&pid, SOFTBODY_EXE, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) {
+        ADD_FAILURE() << "cannot start " << SOFTBODY_EXE;
+        return result;
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = read_text(out_path);
+    result.err = read_text(err_path);
+    return result;
+}
+
+std::string describe(const Result& r) {
+    return "exit " + std::to_string(r.exit_code) + "\nstdout: " + r.out + "\nstderr: " + r.err;
+}
+
+// A unit cube centred on the origin, with faces: 8 particles, 28 springs.
+const char* kCubeObj =
+    "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+    "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n"
+    "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+    "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+// n points in a ball of radius 1.5 m, as an OBJ point cloud.
+std::string cloud_obj(int n) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::ostringstream out;
+    out.precision(9);
+    for (int i = 0; i < n;) {
+        const double x = unit(rng), y = unit(rng), z = unit(rng);
+        if (x * x + y * y + z * z > 1.0) continue;
+        out << "v " << 1.5 * x << " " << 1.5 * y << " " << 1.5 * z << "\n";
+        ++i;
+    }
+    return out.str();
+}
+
+// A bad-input run: exit 2, nothing on stdout, and exactly one line on stderr that names the
+// problem (each of `names`).
+void expect_refused(const std::vector<std::string>& args, std::initializer_list<const char*> names) {
+    std::string command;
+    for (const auto& arg : args) command += " " + arg;
+    SCOPED_TRACE("softbody" + command);
+    const Result r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    EXPECT_EQ(r.out, "") << describe(r);
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.back(), '\n') << describe(r);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not one line:\n" << r.err;
+    for (const char* name : names) EXPECT_NE(r.err.find(name), std::string::npos) << "stderr lacks '" << name << "': " << r.err;
+}
+
+// --- The JSON summary ----------------------------------------------------------------------
+
+TEST(Simulate, PrintsOneJsonObjectWithTheSummary) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    const Result r = run({"simulate", "--mesh", mesh, "--ticks", "25", "--threads", "1"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(r.err, "");
+    ASSERT_FALSE(r.out.empty());
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "one line: " << r.out;
+    const json j = json::parse(r.out);
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j.at("particles"), 8);
+    EXPECT_EQ(j.at("springs"), 28);
+    EXPECT_EQ(j.at("ticks"), 25);
+    EXPECT_NEAR(j.at("sim_time").get<double>(), 25 * 0.02, 1e-6);
+    EXPECT_TRUE(j.at("wall_time").is_number());
+    EXPECT_GE(j.at("wall_time").get<double>(), 0.0);
+    const json& e = j.at("energy");
+    for (const char* key : {"kinetic", "gravity", "elastic", "total"}) EXPECT_TRUE(e.at(key).is_number()) << key;
+    const double sum = e.at("kinetic").get<double>() + e.at("gravity").get<double>() + e.at("elastic").get<double>();
+    EXPECT_NEAR(e.at("total").get<double>(), sum, 1e-9 * std::abs(sum) + 1e-12);
+    ASSERT_TRUE(j.at("com").is_array());
+    ASSERT_EQ(j.at("com").size(), 3u);
+    for (const auto& c : j.at("com")) EXPECT_TRUE(c.is_number());
+    EXPECT_TRUE(j.at("min_z").is_number());
+    EXPECT_TRUE(j.at("stability").is_number());
+    EXPECT_GT(j.at("stability").get<double>(), 0.0);
+    EXPECT_EQ(j.at("status"), "ok");
+    const std::string hash = j.at("state_hash");
+    EXPECT_EQ(hash.size(), 16u);
+    EXPECT_EQ(hash.find_first_not_of("0123456789abcdef"), std::string::npos) << hash;
+}
+
+// At tick 0 the numbers are known in closed form: the cube (8 kg) rests 2 m up (the default
+// init_height) with no motion and no stretch, so its gravitational energy is M g z = 156.96 J.
+TEST(Simulate, ZeroTicksReportsTheStartingState) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    const Result r = run({"simulate", "--mesh", mesh, "--ticks", "0", "--set", "init_height=2"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("ticks"), 0);
+    EXPECT_EQ(j.at("sim_time").get<double>(), 0.0);
+    EXPECT_EQ(j.at("energy").at("kinetic").get<double>(), 0.0);
+    EXPECT_EQ(j.at("energy").at("elastic").get<double>(), 0.0);
+    // Float positions (2 m, ulp 2.4e-7) times 8 kg and 9.81 m/s^2: 1e-4 J.
+    EXPECT_NEAR(j.at("energy").at("gravity").get<double>(), 8 * 9.81 * 2.0, 1e-4);
+    EXPECT_NEAR(j.at("com")[2].get<double>(), 2.0, 1e-6);
+    EXPECT_NEAR(j.at("min_z").get<double>(), 1.5, 1e-6);
+}
+
+TEST(Simulate, SecondsCountTicksOfDt) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    const Result r = run({"simulate", "--mesh", mesh, "--seconds", "0.5", "--set", "dt=0.01"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(json::parse(r.out).at("ticks"), 50);
+}
+
+// --- The CSV dump ---------------------------------------------------------------------------
+
+TEST(Simulate, DumpWritesCsvEveryKTicksFromTickZero) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    const std::string csv = dir.file("out.csv");
+    const Result r = run({"simulate", "--mesh", mesh, "--ticks", "20", "--dump", csv, "--dump-every", "10",
+                          "--threads", "1"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    std::istringstream lines(read_text(csv));
+    std::string line;
+    ASSERT_TRUE(std::getline(lines, line));
+    EXPECT_EQ(line, "tick,time,particle,x,y,z,vx,vy,vz");
+    struct Row {
+        long tick;
+        double time;
+        long particle;
+        double x, y, z, vx, vy, vz;
+    };
+    std::vector<Row> rows;
+    while (std::getline(lines, line)) {
+        Row row{};
+        char comma[8];
+        std::istringstream in(line);
+        in >> row.tick >> comma[0] >> row.time >> comma[1] >> row.particle >> comma[2] >> row.x >> comma[3] >> row.y >>
+            comma[4] >> row.z >> comma[5] >> row.vx >> comma[6] >> row.vy >> comma[7] >> row.vz;
+        ASSERT_FALSE(in.fail()) << "unreadable row: " << line;
+        for (char c : comma) ASSERT_EQ(c, ',') << line;
+        rows.push_back(row);
+    }
+    ASSERT_EQ(rows.size(), 3u * 8u);  // ticks 0, 10 and 20, eight particles each
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+        const Row& row = rows[k];
+        EXPECT_EQ(row.tick, long(k / 8) * 10);
+        EXPECT_NEAR(row.time, double(row.tick) * 0.02, 1e-6);
+        EXPECT_EQ(row.particle, long(k % 8));
+    }
+    // Tick 0 is the start: the cube's corners lifted by init_height, at rest.
+    for (std::size_t k = 0; k < 8; ++k) {
+        EXPECT_EQ(std::abs(rows[k].x), 0.5);
+        EXPECT_EQ(std::abs(rows[k].y), 0.5);
+        EXPECT_NEAR(rows[k].z, rows[k].z > 2.0 ? 2.5 : 1.5, 1e-6);
+        EXPECT_EQ(rows[k].vx, 0.0);
+        EXPECT_EQ(rows[k].vz, 0.0);
+    }
+    // The last rows are the final state that the summary describes.
+    const json j = json::parse(r.out);
+    double com_z = 0.0;
+    for (std::size_t k = 16; k < 24; ++k) com_z += rows[k].z / 8.0;
+    EXPECT_NEAR(com_z, j.at("com")[2].get<double>(), 1e-6);  // %.9g in the CSV
+}
+
+// --- Bad input: exit 2, one line on stderr -------------------------------------------------
+
+TEST(BadInput, UnknownOption) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--frobnicate"}, {"--frobnicate"});
+}
+
+TEST(BadInput, MissingValue) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh, "--ticks"}, {"--ticks"});
+    expect_refused({"simulate", "--ticks", "5", "--mesh"}, {"--mesh"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set"}, {"--set"});
+}
+
+TEST(BadInput, BadValues) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "-5"}, {"--ticks"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "ten"}, {"--ticks"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--threads", "0"}, {"--threads"});
+}
+
+TEST(BadInput, BadSet) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "stiffness"}, {"--set", "stiffness"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "=3"}, {"--set"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "stiffness=abc"}, {"'stiffness'"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "dt=0"}, {"'dt'"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "particle_mass=-1"}, {"'particle_mass'"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "substeps=0"}, {"'substeps'"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "static_friction=nan"}, {"'static_friction'"});
+}
+
+TEST(BadInput, UnknownKey) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--set", "stifness=3"}, {"'stifness'", "'stiffness'"});
+    const std::string scene = dir.write("scene.json", "{\n  \"mesh\": \"cube.obj\",\n  \"wobble\": 1\n}\n");
+    expect_refused({"simulate", "--scene", scene, "--ticks", "5"}, {"scene.json:3", "'wobble'"});
+}
+
+TEST(BadInput, MissingMeshFile) {
+    TempDir dir;
+    const std::string absent = dir.file("absent.obj");
+    expect_refused({"simulate", "--mesh", absent, "--ticks", "5"}, {absent.c_str()});
+    expect_refused({"simulate", "--scene", dir.file("absent.json"), "--ticks", "5"}, {"absent.json"});
+}
+
+TEST(BadInput, MalformedMeshNamesFileAndLine) {
+    TempDir dir;
+    const std::string obj = dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n");
+    expect_refused({"simulate", "--mesh", obj, "--ticks", "5"}, {"bad.obj:3:"});
+    const std::string faces = dir.write("faces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    expect_refused({"simulate", "--mesh", faces, "--ticks", "5"}, {"faces.obj:4:"});
+    const std::string off = dir.write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+    expect_refused({"simulate", "--mesh", off, "--ticks", "5"}, {"bad.off:"});
+}
+
+TEST(BadInput, BothOrNeitherOfSecondsAndTicks) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    expect_refused({"simulate", "--mesh", mesh}, {"--seconds", "--ticks"});
+    expect_refused({"simulate", "--mesh", mesh, "--ticks", "5", "--seconds", "1"}, {"--seconds", "--ticks"});
+}
+
+// --- Divergence: exit 3, with what to change ------------------------------------------------
+
+TEST(Simulate, DivergingRunExitsWithThreeAndSaysWhatToChange) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", kCubeObj);
+    // k = 1e5 N/m on 8 particles: N k h^2 = 320, far past the limit of 4 m; the landing sets it off.
+    const Result r = run({"simulate", "--mesh", mesh, "--ticks", "500", "--set", "stiffness=100000", "--threads", "1"});
+    EXPECT_EQ(r.exit_code, 3) << describe(r);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not one line:\n" << r.err;
+    EXPECT_NE(r.err.find("substeps"), std::string::npos) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("status"), "diverged");
+    EXPECT_LT(j.at("ticks").get<int>(), 500);
+    // The last finite state is reported: every number in the summary is finite (JSON has no
+    // NaN; nlohmann writes a non-finite number as null).
+    EXPECT_TRUE(j.at("energy").at("total").is_number());
+    for (const auto& c : j.at("com")) EXPECT_TRUE(c.is_number());
+}
+
+// --- Threads ----------------------------------------------------------------------------------
+
+// 550 particles are three blocks of the pair kernel (256 each): the threads share six tiles and
+// each particle's force sums three partials, yet the bits must not depend on the thread count.
+TEST(Simulate, SameStateHashAtOneAndTwoThreads) {
+    TempDir dir;
+    const std::string mesh = dir.write("cloud.obj", cloud_obj(550));
+    // Half of Listing 8's stiffness keeps 550 particles within the stability limit at one substep.
+    const std::vector<std::string> base{"simulate", "--mesh", mesh, "--ticks", "60", "--set", "stiffness=5"};
+    std::vector<std::string> one = base, two = base;
+    one.insert(one.end(), {"--threads", "1"});
+    two.insert(two.end(), {"--threads", "2"});
+    const Result a = run(one), b = run(two), again = run(one);
+    ASSERT_EQ(a.exit_code, 0) << describe(a);
+    ASSERT_EQ(b.exit_code, 0) << describe(b);
+    const json ja = json::parse(a.out), jb = json::parse(b.out);
+    EXPECT_EQ(ja.at("particles"), 550);
+    EXPECT_EQ(ja.at("state_hash"), jb.at("state_hash"));
+    EXPECT_EQ(ja.at("state_hash"), json::parse(again.out).at("state_hash"));
+}
+
+}  // namespace

@@ -1,0 +1,120 @@
+// What the physics tests share: small meshes built in code, parameters with every effect off
+// unless a test turns it on, and a temporary folder for test files.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "physics/mesh.h"
+#include "physics/params.h"
+#include "physics/world.h"
+
+namespace softbody::test {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// A mesh of points only (no faces): a valid point cloud, one particle per distinct point.
+inline Mesh points(const std::vector<Vec3>& positions, const std::string& name = "test points") {
+    RawMesh raw;
+    raw.positions = positions;
+    return build_mesh(raw, name);
+}
+
+// n points spread uniformly in a ball of the given radius about the origin, reproducibly.
+inline std::vector<Vec3> random_cloud(std::size_t n, std::uint32_t seed, float radius = 1.0f) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<Vec3> out;
+    while (out.size() < n) {
+        const Vec3 p{unit(rng), unit(rng), unit(rng)};
+        if (dot(p, p) <= 1.0f) out.push_back(p * radius);
+    }
+    return out;
+}
+
+// The 8 corners of a cube with side `side`, centred on the origin.
+inline std::vector<Vec3> cube_corners(float side = 1.0f) {
+    std::vector<Vec3> out;
+    for (int i = 0; i < 8; ++i) {
+        out.push_back({(i & 1 ? 0.5f : -0.5f) * side, (i & 2 ? 0.5f : -0.5f) * side, (i & 4 ? 0.5f : -0.5f) * side});
+    }
+    return out;
+}
+
+// Parameters with nothing acting: no gravity, springs, dampers, drag or ground, and the mesh
+// left where it is (init_height 0). Each test switches on what it examines.
+inline Params bare_params() {
+    Params p;
+    p.init_height = 0.0f;
+    p.gravity = {0.0f, 0.0f, 0.0f};
+    p.stiffness = 0.0f;
+    p.damping = 0.0f;
+    p.drag_coefficient = 0.0f;
+    p.ground = false;
+    return p;
+}
+
+// Listing 8's constants as this project's defaults hold them (m 1 kg, k 10 N/m, c 0.1 kg/s,
+// g 9.81 m/s^2 down, dt 0.02 s, ground on). Asserted once in params_test.cpp.
+inline Params listing8_params() { return Params{}; }
+
+inline Vec3 position(const World& world, std::size_t i) { return world.positions()[i]; }
+inline Vec3 velocity(const World& world, std::size_t i) { return world.velocities()[i]; }
+
+inline bool all_finite(const World& world) {
+    for (std::size_t i = 0; i < world.particle_count(); ++i) {
+        if (!is_finite(position(world, i)) || !is_finite(velocity(world, i))) return false;
+    }
+    return true;
+}
+
+// A folder of its own under the system's temporary folder, removed with everything in it.
+class TempDir {
+public:
+    TempDir() {
+        static std::atomic<int> counter{0};
+        std::random_device random;
+        path_ = std::filesystem::temp_directory_path() /
+                ("softbody-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+                 std::to_string(random()));
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    const std::filesystem::path& path() const { return path_; }
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+    // Writes text to a file in the folder and returns its path.
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::string target = file(name);
+        std::ofstream out(target, std::ios::binary);
+        out << text;
+        out.close();
+        EXPECT_TRUE(out) << "cannot write " << target;
+        return target;
+    }
+
+private:
+    std::filesystem::path path_;
+};
+
+inline std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace softbody::test
