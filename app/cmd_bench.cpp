@@ -40,7 +40,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: softbody bench [--quick] [--json] [--sizes N,N,...] [--seconds S] [--threads N]\n"
-    "                      [--baseline-max N] [--reference-max N] [--no-meshes] [--no-search]\n"
+    "                      [--baseline-max N] [--reference-max N] [--no-kernels] [--no-meshes] [--no-search]\n"
     "  --quick           a few seconds: small sizes, short measurements (for CI)\n"
     "  --json            print one JSON object instead of the tables\n"
     "  --sizes           cloud sizes (default 500,1000,2500,5000,10000)\n"
@@ -48,7 +48,10 @@ constexpr const char* kUsage =
     "  --threads         threads for the fast kernel's multi-threaded rows (default: all)\n"
     "  --baseline-max    largest N for the baseline transcription (default 5000: its N x N\n"
     "                    tables take 12 N^2 bytes, 1.2 GB at N = 10,000)\n"
-    "  --reference-max   largest N for the reference kernel (default 10000)";
+    "  --reference-max   largest N for the reference kernel (default 10000)\n"
+    "  --no-kernels      skip the table of the pair kernel alone (every tile variant)\n"
+    "  --no-meshes       skip the bundled meshes\n"
+    "  --no-search       skip the search for the largest real-time cloud";
 
 using Clock = std::chrono::steady_clock;
 
@@ -365,6 +368,36 @@ Measurement measure(Kernel kernel, const std::function<Mesh()>& make_mesh, int t
     });
 }
 
+// The pair kernel alone, one tile variant: compute() on a cloud displaced from rest and moving,
+// no tick around it. calls/ticks are force evaluations here.
+Measurement measure_kernel(PairKernelVariant variant, std::size_t n, int threads, double budget) {
+    return in_child([&]() {
+        Measurement m;
+        const Mesh mesh = cloud_mesh(n);
+        std::mt19937 rng(7u);
+        std::uniform_real_distribution<float> u(-0.05f, 0.05f);
+        Vec3Array x, v, r;
+        x.resize(n);
+        v.resize(n);
+        r.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            r.set(i, mesh.positions[i]);
+            x.set(i, mesh.positions[i] + Vec3{u(rng), u(rng), u(rng)});
+            v.set(i, Vec3{u(rng), u(rng), u(rng)} * 20.0f);
+        }
+        const PairInput in{x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(),
+                           r.x.data(), r.y.data(), r.z.data(), n, 10.0f, 0.1f};
+        ThreadPool pool(threads);
+        PairForceKernel kernel(pool, variant);
+        Vec3Array f;
+        time_ticks(m, [&] { kernel.compute(in, f); }, [] { return true; }, budget, 3, 100000, true);
+        m.threads = threads;
+        m.pairs_per_tick = double(n) * double(n - 1) / 2.0;
+        m.evals_per_tick = m.pairs_per_tick;
+        return m;
+    });
+}
+
 struct Row {
     std::string scene;  // "cloud" or the mesh file's name
     std::size_t n = 0;
@@ -455,7 +488,7 @@ std::vector<std::string> bundled_meshes() {
 
 int bench_command(int argc, char** argv) {
     Args args(argc, argv, 2);
-    bool quick = false, json = false, meshes = true, search = true;
+    bool quick = false, json = false, meshes = true, search = true, kernels = true;
     std::vector<std::size_t> sizes;
     double budget = -1.0;
     int threads = hardware_threads();
@@ -466,6 +499,7 @@ int bench_command(int argc, char** argv) {
         else if (option == "--json") json = true;
         else if (option == "--no-meshes") meshes = false;
         else if (option == "--no-search") search = false;
+        else if (option == "--no-kernels") kernels = false;
         else if (option == "--sizes") sizes = parse_sizes(args.value(option));
         else if (option == "--seconds") budget = parse_double(option, args.value(option), 0.0, 3600.0);
         else if (option == "--threads") threads = static_cast<int>(parse_int(option, args.value(option), 1, 256));
@@ -518,6 +552,34 @@ int bench_command(int argc, char** argv) {
         for (int t : thread_counts) add({"cloud", n, fast_name, measure(Kernel::Fast, cloud, t, budget)});
         if (n <= std::size_t(reference_max)) add({"cloud", n, "reference", measure(Kernel::Reference, cloud, 1, budget)});
         if (n <= std::size_t(baseline_max)) add({"cloud", n, "baseline", measure(Kernel::Baseline, cloud, 1, budget)});
+    }
+
+    // --- The pair kernel alone, every tile variant this CPU runs ---------------------------------
+    nlohmann::ordered_json kernel_rows = nlohmann::ordered_json::array();
+    if (kernels) {
+        if (!json) {
+            std::cout << "\npair kernel alone (PairForceKernel::compute on a moving cloud, no tick around it):\n";
+            std::printf("%-8s %6s %3s %6s %19s %9s\n", "tiles", "N", "thr", "calls", "ms/call (best)", "pairs/s");
+        }
+        for (std::size_t n : sizes) {
+            for (PairKernelVariant variant : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+                if (!PairForceKernel::supported(variant)) continue;
+                for (int t : thread_counts) {
+                    const Measurement m = measure_kernel(variant, n, t, 0.25 * budget);
+                    const double rate = m.measured ? m.pairs_per_tick / m.median_s : 0.0;
+                    kernel_rows.push_back({{"tiles", PairForceKernel::name(variant)}, {"particles", n}, {"threads", t},
+                                           {"calls_measured", m.ticks}, {"ms_per_call_median", ms(m.median_s)},
+                                           {"ms_per_call_best", ms(m.best_s)}, {"pairs_per_second", rate}});
+                    if (!json) {
+                        char timing[40];
+                        std::snprintf(timing, sizeof timing, "%.4g (%.4g)", ms(m.median_s), ms(m.best_s));
+                        std::printf("%-8s %6zu %3d %6d %19s %9s\n", PairForceKernel::name(variant), n, t, m.ticks, timing,
+                                    si(rate).c_str());
+                    }
+                }
+            }
+        }
+        std::cout.flush();
     }
 
     // --- Bundled meshes ------------------------------------------------------------------------
@@ -699,6 +761,7 @@ int bench_command(int argc, char** argv) {
             {"seconds_per_measurement", budget},
             {"quick", quick},
             {"rows", rows_json},
+            {"kernel_alone", kernel_rows},
             {"ratios", ratios},
             {"real_time", real_time},
             {"frame", frame},

@@ -38,48 +38,56 @@ vec3 ambient(vec3 n) {
 }
 
 // ---- Soft shadows from the sun ------------------------------------------------------------
-// A depth map rendered from the sun (orthographic, fitted to the body). Percentage-closer
-// soft shadows: a blocker search finds how far the occluder is above the receiver, and the
-// filter widens with that gap, so a shadow is crisp where the body touches the ground and
-// soft and wide when the body is high above it.
-uniform sampler2DShadow u_shadow_map;  // compare lookups (bilinear PCF)
-uniform sampler2D u_shadow_depth;      // the same texture, raw depth (blocker search)
+// The sun's view of the body is stored as depth moments (z, z^2), orthographic and fitted to
+// the body, and mipmapped: a lookup at a coarser level averages the moments over a wider
+// square. Only the body (and the overlay spheres) are in the map; everywhere else holds the
+// far plane, z = 1. Over a region where the occluders sit at depth z_b and cover a fraction f,
+//     mean = f z_b + (1 - f),   mean of squares = f z_b^2 + (1 - f)
+// which gives both back:  z_b = (E[z^2] - 1) / (E[z] - 1) - 1  and  f = (1 - E[z]) / (1 - z_b).
+// A receiver behind z_b sees the fraction 1 - f of the sun. First a wide lookup finds the
+// occluders' depth, then the penumbra's width follows from the gap between them and the
+// receiver (a light of finite size), and a second lookup at that width gives the shadow:
+// crisp where the body touches the ground, soft and wide when it is high above it.
+uniform sampler2D u_shadow_moments;    // RG: z, z^2 (mipmapped)
 uniform mat4 u_shadow_matrix;          // world -> [0,1]^3 of the shadow map
 uniform float u_shadows;               // 1 on, 0 off
-uniform float u_shadow_texel;          // one texel, in shadow-map uv
+uniform float u_shadow_size;           // texels a side at level 0
 uniform float u_penumbra_scale;        // penumbra width in uv per unit of depth gap
-uniform float u_shadow_normal_offset;  // m, along the normal, against acne
+uniform float u_shadow_normal_offset;  // m, along the normal, against self-shadowing acne
 
-const vec2 kDisk[16] = vec2[](
-    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
-    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
-    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
-    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
-    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
-    vec2(0.14383161, -0.14100790));
+const float kShadowBias = 0.002;       // depth units: a receiver this close to z_b is lit
+
+// Occluders' mean depth (x) and coverage (y) over a square `width_uv` wide around uv.
+vec2 occluders(vec2 uv, float width_uv) {
+    float lod = max(log2(width_uv * u_shadow_size), 0.0);
+    // Nine bilinear taps half a texel of that level apart: a tent filter, so the coarse
+    // texels of a wide penumbra do not show as steps.
+    float step_uv = 0.5 * exp2(lod) / u_shadow_size;
+    vec2 m = vec2(0.0);
+    for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+            float w = (2.0 - abs(float(i))) * (2.0 - abs(float(j)));  // 1 2 1 in each direction
+            m += w * textureLod(u_shadow_moments, uv + vec2(i, j) * step_uv, lod).xy;
+        }
+    }
+    m /= 16.0;
+    float open = 1.0 - m.x;  // 0 where nothing but the far plane
+    if (open < 1e-5) return vec2(1.0, 0.0);
+    float z_b = clamp((m.y - 1.0) / (m.x - 1.0) - 1.0, 0.0, m.x);
+    return vec2(z_b, clamp(open / max(1.0 - z_b, 1e-5), 0.0, 1.0));
+}
 
 float sun_visibility(vec3 p, vec3 n) {
     if (u_shadows < 0.5) return 1.0;
     vec4 s = u_shadow_matrix * vec4(p + n * u_shadow_normal_offset, 1.0);
     vec3 uvz = s.xyz / s.w;
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
-    float z = min(uvz.z, 0.9999);
+    float z = min(uvz.z, 1.0);
 
-    // Blocker search over a region as wide as the largest penumbra this gap could give.
-    float search = clamp(u_penumbra_scale * z, 2.0 * u_shadow_texel, 0.08);
-    float blockers = 0.0, blocker_depth = 0.0;
-    for (int i = 0; i < 16; ++i) {
-        float d = texture(u_shadow_depth, uvz.xy + kDisk[i] * search).r;
-        if (d < z - 0.0005) {
-            blockers += 1.0;
-            blocker_depth += d;
-        }
-    }
-    if (blockers < 0.5) return 1.0;
-    blocker_depth /= blockers;
-
-    float radius = clamp(u_penumbra_scale * (z - blocker_depth), 1.5 * u_shadow_texel, 0.08);
-    float lit = 0.0;
-    for (int i = 0; i < 16; ++i) lit += texture(u_shadow_map, vec3(uvz.xy + kDisk[i] * radius, z - 0.0005));
-    return lit / 16.0;
+    vec2 search = occluders(uvz.xy, clamp(u_penumbra_scale * z, 4.0 / u_shadow_size, 0.25));
+    if (search.y <= 0.0 || z <= search.x + kShadowBias) return 1.0;
+    float width = clamp(u_penumbra_scale * (z - search.x), 1.5 / u_shadow_size, 0.25);
+    vec2 here = occluders(uvz.xy, width);
+    float behind = smoothstep(here.x + kShadowBias, here.x + 2.0 * kShadowBias, z);
+    return 1.0 - here.y * behind;
 }

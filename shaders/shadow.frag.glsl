@@ -1,3 +1,8 @@
 #version 330 core
-// Depth only: the depth buffer is all the shadow pass keeps.
-void main() {}
+// Depth moments (z, z^2) of the body as the sun sees it; see lighting.glsl.
+out vec2 o_moments;
+
+void main() {
+    float z = gl_FragCoord.z;
+    o_moments = vec2(z, z * z);
+}

@@ -1,5 +1,5 @@
 #version 330 core
-// Depth of the body as the sun sees it.
+// The body as the sun sees it (for the shadow map).
 uniform mat4 u_shadow_view_projection;
 layout(location = 0) in vec3 a_position;
 

@@ -113,6 +113,7 @@ void Demo::edit(const Params& params) {
 bool Demo::reset_pending() const {
     const Params& now = world_->params();
     return now.scale != built_with_.scale || now.init_height != built_with_.init_height ||
+           !(now.rotation == built_with_.rotation) ||
            !(now.initial_velocity == built_with_.initial_velocity) || now.pinned != built_with_.pinned;
 }
 

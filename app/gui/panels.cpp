@@ -26,7 +26,7 @@ struct SliderRange {
     bool logarithmic;
 };
 constexpr SliderRange kSliders[] = {
-    {"scale", 0.05f, 10.0f, true},       {"init_height", 0.0f, 10.0f, false},
+    {"scale", 0.05f, 10.0f, true},       {"rotation", -180.0f, 180.0f, false}, {"init_height", 0.0f, 10.0f, false},
     {"initial_velocity", -10.0f, 10.0f, false}, {"particle_mass", 0.001f, 100.0f, true},
     {"stiffness", 0.0f, 1000.0f, true},  {"damping", 0.0f, 10.0f, true},
     {"gravity", -30.0f, 30.0f, false},   {"dt", 0.001f, 0.05f, true},
@@ -258,10 +258,15 @@ void Panels::parameters(Demo& demo) {
                 break;
             }
             case ParamType::Vec3: {
-                Vec3& v = key == "gravity" ? params.gravity : params.initial_velocity;
-                float values[3] = {v.x, v.y, v.z};
-                edited = ImGui::DragFloat3(label.c_str(), values, 0.05f, range->min, range->max, "%.2f");
-                if (edited) v = {values[0], values[1], values[2]};
+                float values[3] = {};
+                std::sscanf(param_text(params, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
+                const float speed = key == "rotation" ? 1.0f : 0.05f;
+                edited = ImGui::DragFloat3(label.c_str(), values, speed, range->min, range->max, "%.2f");
+                if (edited) {
+                    char text[96];
+                    std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", values[0], values[1], values[2]);
+                    set_param(params, key, text);
+                }
                 break;
             }
             case ParamType::Integrator: {

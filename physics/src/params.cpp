@@ -16,6 +16,7 @@ namespace {
 constexpr ParamInfo kTable[] = {
     {"mesh", ParamType::String, "", "", "Mesh file, OBJ or OFF: one particle per distinct vertex position", 0, 0, false, false},
     {"scale", ParamType::Float, "", "", "Uniform scale from mesh units to metres", 0, 1e4, true, false},
+    {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z (a y-up file needs 90,0,0)", -360, 360, false, false},
     {"init_height", ParamType::Float, "m", "", "Height added to every vertex's z at the start (Listing 8)", -1e4, 1e4, false, false},
     {"initial_velocity", ParamType::Vec3, "m/s", "", "Velocity of every particle at the start", -1e3, 1e3, false, false},
     {"particle_mass", ParamType::Float, "kg", "", "Mass m of each particle (Listing 8: 1)", 0, 1e6, true, true},
@@ -49,6 +50,7 @@ struct FieldRef {
 FieldRef field(Params& p, std::string_view key) {
     if (key == "mesh") return {.s = &p.mesh};
     if (key == "scale") return {.f = &p.scale};
+    if (key == "rotation") return {.v = &p.rotation};
     if (key == "init_height") return {.f = &p.init_height};
     if (key == "initial_velocity") return {.v = &p.initial_velocity};
     if (key == "particle_mass") return {.f = &p.particle_mass};

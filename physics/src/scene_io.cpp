@@ -95,8 +95,10 @@ json value_json(const Params& params, const ParamInfo& info) {
         case ParamType::Int: return json(std::stoll(text));
         case ParamType::Bool: return json(text == "true");
         case ParamType::Vec3: {
-            const Vec3& v = info.key == "gravity" ? params.gravity : params.initial_velocity;
-            return json::array({v.x, v.y, v.z});
+            json v = json::array();
+            std::istringstream parts(text);
+            for (std::string part; std::getline(parts, part, ',');) v.push_back(std::stod(part));
+            return v;
         }
         case ParamType::String:
         case ParamType::Integrator: return json(text);

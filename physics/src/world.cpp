@@ -71,10 +71,20 @@ void World::set_threads(int threads) {
 void World::build_particles() {
     const std::size_t n = mesh_.positions.size();
     rest_.resize(n);
+    // Turn the mesh about x, then y, then z (files written y-up need 90 degrees about x).
+    const float to_rad = 3.14159265358979f / 180.0f;
+    const float cx = std::cos(params_.rotation.x * to_rad), sx = std::sin(params_.rotation.x * to_rad);
+    const float cy = std::cos(params_.rotation.y * to_rad), sy = std::sin(params_.rotation.y * to_rad);
+    const float cz = std::cos(params_.rotation.z * to_rad), sz = std::sin(params_.rotation.z * to_rad);
+    auto rotate = [&](Vec3 v) {
+        v = {v.x, cx * v.y - sx * v.z, sx * v.y + cx * v.z};
+        v = {cy * v.x + sy * v.z, v.y, -sy * v.x + cy * v.z};
+        return Vec3{cz * v.x - sz * v.y, sz * v.x + cz * v.y, v.z};
+    };
     Vec3 centre;
     for (std::size_t i = 0; i < n; ++i) {
         // Listing 8: the mesh's own coordinates, lifted by init_height.
-        const Vec3 p = mesh_.positions[i] * params_.scale + Vec3{0.0f, 0.0f, params_.init_height};
+        const Vec3 p = rotate(mesh_.positions[i]) * params_.scale + Vec3{0.0f, 0.0f, params_.init_height};
         rest_.set(i, p);
         centre += p;
     }

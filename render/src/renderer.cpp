@@ -28,8 +28,8 @@ double ms_since(Clock::time_point start) {
 
 // The sun: high and to one side, so the shadow falls beside the body as well as under it.
 const glm::vec3 kSunDirection = glm::normalize(glm::vec3(-0.42f, -0.30f, 0.86f));
-constexpr int kShadowMapSize = 2048;
-constexpr float kSunAngularRadius = 0.07f;  // rad: a soft studio light rather than the real sun
+constexpr int kShadowMapSize = 1024;
+constexpr float kSunAngularRadius = 0.06f;  // rad: a soft studio light rather than the real sun
 constexpr glm::vec3 kFloorColor{0.64f, 0.63f, 0.60f};
 constexpr float kGhostOpacity = 0.28f;
 
@@ -81,10 +81,10 @@ struct Renderer::State {
     gl::Renderbuffer msaa_color, msaa_depth, resolve_color;
     int fb_width = 0, fb_height = 0, fb_samples = 0;
 
-    // Shadow map: one depth texture, read through two samplers.
+    // Shadow map: depth moments, mipmapped (see lighting.glsl).
     gl::Framebuffer shadow_fbo;
     gl::Texture shadow_texture;
-    gl::Sampler shadow_compare, shadow_raw;
+    gl::Renderbuffer shadow_depth;
 
     // Scratch kept between frames.
     std::vector<glm::vec3> particles;
@@ -184,37 +184,32 @@ void Renderer::State::build_buffers() {
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 
-    // Shadow map: depth only; outside it (and beyond its far plane) counts as lit.
+    // Shadow map: moments (z, z^2) in a float texture with its mip levels, and a depth buffer
+    // to keep the nearest surface.
     shadow_texture = gl::make_texture();
     glBindTexture(GL_TEXTURE_2D, shadow_texture.id());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0, GL_DEPTH_COMPONENT,
-                 GL_UNSIGNED_INT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    int levels = 1;
+    while ((kShadowMapSize >> levels) > 0) ++levels;
+    for (int level = 0; level < levels; ++level) {
+        const int size = std::max(1, kShadowMapSize >> level);
+        glTexImage2D(GL_TEXTURE_2D, level, GL_RG32F, size, size, 0, GL_RG, GL_FLOAT, nullptr);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
     glBindTexture(GL_TEXTURE_2D, 0);
+    shadow_depth = gl::make_renderbuffer();
+    glBindRenderbuffer(GL_RENDERBUFFER, shadow_depth.id());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
     shadow_fbo = gl::make_framebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo.id());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture.id(), 0);
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, shadow_texture.id(), 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, shadow_depth.id());
     gl::check_framebuffer(GL_FRAMEBUFFER, "shadow map");
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-
-    const float border[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-    shadow_compare = gl::make_sampler();
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameterfv(shadow_compare.id(), GL_TEXTURE_BORDER_COLOR, border);
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glSamplerParameteri(shadow_compare.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    shadow_raw = gl::make_sampler();
-    glSamplerParameteri(shadow_raw.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glSamplerParameteri(shadow_raw.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glSamplerParameteri(shadow_raw.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(shadow_raw.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameterfv(shadow_raw.id(), GL_TEXTURE_BORDER_COLOR, border);
 }
 
 void Renderer::State::ensure_targets(int width, int height, int samples) {
@@ -272,11 +267,10 @@ void Renderer::State::set_lighting(const ShaderProgram& program, const glm::vec3
                                    bool shadows, float penumbra_scale, float normal_offset) const {
     set(program.uniform("u_sun_dir"), kSunDirection);
     set(program.uniform("u_eye"), eye);
-    set(program.uniform("u_shadow_map"), 0);
-    set(program.uniform("u_shadow_depth"), 1);
+    set(program.uniform("u_shadow_moments"), 0);
     set(program.uniform("u_shadow_matrix"), shadow_matrix);
     set(program.uniform("u_shadows"), shadows ? 1.0f : 0.0f);
-    set(program.uniform("u_shadow_texel"), 1.0f / float(kShadowMapSize));
+    set(program.uniform("u_shadow_size"), float(kShadowMapSize));
     set(program.uniform("u_penumbra_scale"), penumbra_scale);
     set(program.uniform("u_shadow_normal_offset"), normal_offset);
 }
@@ -363,9 +357,9 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(1.5f, 3.0f);
+        glDisable(GL_BLEND);
+        glClearColor(1.0f, 1.0f, 0.0f, 0.0f);  // the far plane: nothing in the way
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         if (has_surface) {
             s.shadow.use();
             set(s.shadow.uniform("u_shadow_view_projection"), light);
@@ -381,14 +375,11 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
             glBindVertexArray(s.sphere_vao.id());
             glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(s.overlays.spheres.size()));
         }
-        glDisable(GL_POLYGON_OFFSET_FILL);
+        glBindTexture(GL_TEXTURE_2D, s.shadow_texture.id());
+        glGenerateMipmap(GL_TEXTURE_2D);
     }
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, s.shadow_texture.id());
-    glBindSampler(0, s.shadow_compare.id());
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, s.shadow_texture.id());
-    glBindSampler(1, s.shadow_raw.id());
 
     // --- Main pass, multisampled -------------------------------------------------------------
     const int samples = std::clamp(look.samples, 1, std::max(1, s.info.max_samples));
@@ -499,11 +490,6 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
-    glBindSampler(0, 0);
-    glBindSampler(1, 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);

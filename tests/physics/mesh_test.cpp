@@ -92,8 +92,8 @@ TEST(Weld, CoincidentVerticesNeverBecomeTwoParticles) {
         }
         diagonal_sq = dot(hi - lo, hi - lo);
     }
-    // Copies are jittered by up to 0.25 of the weld distance (here ~3.5e-6 * 0.25 m); that is
-    // still a hundred ulps at positions of 10 m, so the jitter is real, not rounded away.
+    // Copies are jittered by up to a quarter of the weld distance (1e-6 of the 35 m diagonal:
+    // 8.7e-6 m), which is still nine ulps at positions of 10 m: real, not rounded away.
     const float jitter = 0.25f * 1e-6f * std::sqrt(diagonal_sq);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);

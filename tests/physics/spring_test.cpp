@@ -141,9 +141,9 @@ TEST(HangingMass, DamperDecaysAsExpOfMinusCtOver2m) {
         // The continuous envelope: exp(-c t / (2 m)), reduced mass m (the other end is pinned).
         const double continuous = std::exp(-c * t / (2.0 * m));
         // A parabola through three samples of a sine 0.1 rad apart finds its peak to about
-        // (h omega)^4 / 100 = 1e-6 relative; 2e-4 leaves room for float rounding of u (the
-        // amplitude falls to 0.06 m, whose ulp-level noise is 1e-6 m, ~2e-5 of it).
-        EXPECT_NEAR(ratio, discrete, 2e-4) << "peak " << p << " at t = " << t;
+        // (h omega)^4 / 100 = 1e-6 relative, and positions near 1.4 m carry float noise of
+        // 1e-7 m, 2e-6 of the smallest amplitude (0.065 m): 5e-5 holds both (measured 4e-6).
+        EXPECT_NEAR(ratio, discrete, 5e-5) << "peak " << p << " at t = " << t;
         // ln sqrt(1 - x) = -x/2 - x^2/4 - ...: the scheme decays faster than exp(-x/2) by
         // x^2/4 = 4e-6 per step (x = h gamma = 0.004), 3.6e-3 relative over 900 steps. 1e-2
         // relative holds that; the wrong rate c/m (or c/(4m)) would miss by 50% or more.

@@ -27,6 +27,7 @@ std::optional<Integrator> integrator_from_string(std::string_view name);
 struct Params {
     std::string mesh;                          // OBJ or OFF file
     float scale = 1.0f;                        // mesh units -> metres
+    Vec3 rotation{0.0f, 0.0f, 0.0f};           // degrees about x, then y, then z (y-up files: 90,0,0)
     float init_height = 2.0f;                  // m added to every vertex's z (Listing 8)
     Vec3 initial_velocity{0.0f, 0.0f, 0.0f};   // m/s, every particle
     float particle_mass = 1.0f;                // kg per particle (Listing 8)
