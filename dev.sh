@@ -2,6 +2,7 @@
 # The two commands of README.md, each complete on its own on a fresh Debian 12 machine:
 #   ./dev.sh demo   install what is missing, build, open the interactive demo
 #   ./dev.sh test   install what is missing, build, run every test
+#   ./dev.sh soak   install, build, run the demo for 20,000 scripted frames (virtual display)
 # Everything comes from Debian's packages; nothing is downloaded from anywhere else.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -50,9 +51,22 @@ case "${1:-}" in
     build
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$JOBS"
     ;;
+  soak)
+    # Everything a user does, for 20,000 frames, in one process; memory is reported at frame
+    # 100 and at the end (the JSON line's memory_kib).
+    install_missing
+    build
+    frames=${SOAK_FRAMES:-20000}
+    runner=()
+    if [ -z "${DISPLAY:-}" ]; then runner=(xvfb-run -a -s "-screen 0 1280x800x24"); fi
+    start=$(date +%s)
+    "${runner[@]}" "$BUILD_DIR/app/softbody" run --size 800x600 --frames "$frames" --script tests/soak/soak.script
+    echo "dev.sh: soak of $frames frames took $(( $(date +%s) - start )) s"
+    ;;
   *)
     echo "usage: ./dev.sh demo   (install, build, open the demo)" >&2
     echo "       ./dev.sh test   (install, build, run every test)" >&2
+    echo "       ./dev.sh soak   (install, build, 20,000 scripted frames of the demo)" >&2
     exit 2
     ;;
 esac

@@ -10,6 +10,7 @@
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -47,6 +48,17 @@ void save_window(const std::string& path, int width, int height) {
     }
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     render::write_png(path, image);
+}
+
+// Resident memory now and at its peak, in KiB (Linux), for the soak's "memory stays flat".
+std::pair<long, long> resident_kib() {
+    std::ifstream status("/proc/self/status");
+    long rss = -1, peak = -1;
+    for (std::string line; std::getline(status, line);) {
+        if (line.rfind("VmRSS:", 0) == 0) rss = std::stol(line.substr(6));
+        if (line.rfind("VmHWM:", 0) == 0) peak = std::stol(line.substr(6));
+    }
+    return {rss, peak};
 }
 
 void run_script_command(Demo& demo, const ScriptCommand& command) {
@@ -140,6 +152,9 @@ int run_command(int argc, char** argv, int first) {
     demo->frame_body();
 
     std::size_t next_command = 0;
+    std::int64_t script_start = 0;
+    constexpr std::int64_t kWarmupFrames = 100;
+    long rss_after_warmup = -1;  // frame the script's frame 0 falls on (moves at "loop")
     double last = window.time();
     for (std::int64_t frame = 0; !window.should_close() && (!scripted || frame < frames); ++frame) {
         window.poll_events();
@@ -156,8 +171,13 @@ int run_command(int argc, char** argv, int first) {
             panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
             if (ui.toggle_panels) panels.show_panels = !panels.show_panels;
         }
-        for (; next_command < script.size() && script[next_command].frame <= frame; ++next_command) {
+        for (; next_command < script.size() && script[next_command].frame <= frame - script_start; ++next_command) {
             const ScriptCommand& command = script[next_command];
+            if (command.verb == "loop") {
+                script_start = frame;
+                next_command = std::size_t(-1);  // the loop's ++ makes it 0
+                continue;
+            }
             if (command.verb == "input") {
                 const UiRequests ui = controls.handle(*demo, command.input, width, height, ui_scale);
                 panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
@@ -182,6 +202,7 @@ int run_command(int argc, char** argv, int first) {
             save_window(screenshot_path, static_cast<int>(width), static_cast<int>(height));
         }
         window.swap_buffers();
+        if (frame == kWarmupFrames) rss_after_warmup = resident_kib().first;
     }
 
     // A summary for scripts and tests: what the session ended with.
@@ -195,6 +216,8 @@ int run_command(int argc, char** argv, int first) {
         {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
         {"params", nlohmann::json::parse(scene_to_json(world.params()))},
     };
+    const auto [rss_end, rss_peak] = resident_kib();
+    out["memory_kib"] = {{"after_warmup", rss_after_warmup}, {"end", rss_end}, {"peak", rss_peak}};
     std::cout << out.dump() << std::endl;
     return kOk;
 }

@@ -8,6 +8,7 @@
 // one line on stderr and an exit code.
 #include <exception>
 #include <iostream>
+#include <string>
 #include <string_view>
 
 #include "cli.h"
@@ -46,7 +47,13 @@ int main(int argc, char** argv) {
     try {
         return dispatch(argc, argv);
     } catch (const UsageError& e) {
-        std::cerr << "softbody: " << e.what() << "\n";
+        // One line: the problem, and where the full usage is.
+        std::string message = e.what();
+        message = message.substr(0, message.find('\n'));
+        const std::string_view first = argc > 1 ? argv[1] : "";
+        const bool known = first == "simulate" || first == "render" || first == "bench" || first == "run";
+        const std::string command = known ? " " + std::string(first) : "";
+        std::cerr << "softbody: " << message << " (see 'softbody" << command << " --help')\n";
         return kBadInput;
     } catch (const softbody::InputError& e) {
         std::cerr << "softbody: " << e.what() << "\n";

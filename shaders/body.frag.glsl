@@ -23,7 +23,9 @@ void main() {
     float wrap = 0.25;
     float n_dot_l = dot(n, u_sun_dir);
     float diffuse = max((n_dot_l + wrap) / (1.0 + wrap), 0.0);
-    float visibility = sun_visibility(v_world, n);
+    // Near the terminator the faceted surface the sun sees and the smooth normals disagree:
+    // there the shadow fades out and the (wrapped) diffuse term alone darkens the surface.
+    float visibility = mix(1.0, sun_visibility(v_world, n), smoothstep(0.05, 0.35, n_dot_l));
     vec3 h = normalize(u_sun_dir + v);
     float fresnel = 0.04 + 0.96 * pow(1.0 - max(dot(n, v), 0.0), 5.0);
     float specular = pow(max(dot(n, h), 0.0), 48.0) * (48.0 + 8.0) / 25.0 * step(0.0, n_dot_l);

@@ -57,24 +57,24 @@ uniform float u_shadow_normal_offset;  // m, along the normal, against self-shad
 
 const float kShadowBias = 0.002;       // depth units: a receiver this close to z_b is lit
 
-// Occluders' mean depth (x) and coverage (y) over a square `width_uv` wide around uv.
-vec2 occluders(vec2 uv, float width_uv) {
-    float lod = max(log2(width_uv * u_shadow_size), 0.0);
-    // Nine bilinear taps half a texel of that level apart: a tent filter, so the coarse
-    // texels of a wide penumbra do not show as steps.
-    float step_uv = 0.5 * exp2(lod) / u_shadow_size;
-    vec2 m = vec2(0.0);
-    for (int j = -1; j <= 1; ++j) {
-        for (int i = -1; i <= 1; ++i) {
-            float w = (2.0 - abs(float(i))) * (2.0 - abs(float(j)));  // 1 2 1 in each direction
-            m += w * textureLod(u_shadow_moments, uv + vec2(i, j) * step_uv, lod).xy;
-        }
-    }
-    m /= 16.0;
+// Occluders' mean depth (x) and coverage (y) from averaged moments.
+vec2 occluders_from(vec2 m) {
     float open = 1.0 - m.x;  // 0 where nothing but the far plane
     if (open < 1e-5) return vec2(1.0, 0.0);
     float z_b = clamp((m.y - 1.0) / (m.x - 1.0) - 1.0, 0.0, m.x);
     return vec2(z_b, clamp(open / max(1.0 - z_b, 1e-5), 0.0, 1.0));
+}
+
+float shadow_lod(float width_uv) { return max(log2(width_uv * u_shadow_size), 0.0); }
+
+// Over a square `width_uv` wide: four bilinear taps half a texel of that level apart, a tent
+// filter, so the coarse texels of a wide penumbra do not show as steps.
+vec2 occluders(vec2 uv, float width_uv) {
+    float lod = shadow_lod(width_uv);
+    float h = 0.5 * exp2(lod) / u_shadow_size;
+    vec2 m = textureLod(u_shadow_moments, uv + vec2(-h, -h), lod).xy + textureLod(u_shadow_moments, uv + vec2(h, -h), lod).xy +
+             textureLod(u_shadow_moments, uv + vec2(-h, h), lod).xy + textureLod(u_shadow_moments, uv + vec2(h, h), lod).xy;
+    return occluders_from(0.25 * m);
 }
 
 float sun_visibility(vec3 p, vec3 n) {
@@ -84,7 +84,10 @@ float sun_visibility(vec3 p, vec3 n) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
     float z = min(uvz.z, 1.0);
 
-    vec2 search = occluders(uvz.xy, clamp(u_penumbra_scale * z, 4.0 / u_shadow_size, 0.25));
+    // One lookup over the widest penumbra this receiver could have finds the occluders' depth
+    // (and, for most of the floor, that there are none).
+    float search_lod = shadow_lod(clamp(u_penumbra_scale * z, 4.0 / u_shadow_size, 0.25)) + 1.0;
+    vec2 search = occluders_from(textureLod(u_shadow_moments, uvz.xy, search_lod).xy);
     if (search.y <= 0.0 || z <= search.x + kShadowBias) return 1.0;
     float width = clamp(u_penumbra_scale * (z - search.x), 1.5 / u_shadow_size, 0.25);
     vec2 here = occluders(uvz.xy, width);

@@ -99,8 +99,9 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
                 fail("save_preset needs a path, optionally followed by 'overwrite'");
             }
             command.verb = verb;
-        } else if (verb == "reset" || verb == "pause" || verb == "play") {
+        } else if (verb == "reset" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");
+            if (verb == "loop" && command.frame == 0) fail("loop needs a frame after 0");
             command.verb = verb;
         } else {
             fail("unknown command '" + verb + "'");

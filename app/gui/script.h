@@ -11,6 +11,7 @@
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
 //   95       reset | pause | play
+//   400      loop                       start the script again (from its frame 0) here
 //
 // Events run at the start of their frame, in file order.
 #pragma once

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "pair_tiles.h"
 
@@ -147,6 +148,21 @@ std::size_t tile_count(std::size_t n) {
 
 std::size_t padded(std::size_t n) { return (n + detail::kPad - 1) / detail::kPad * detail::kPad; }
 
+// Below this many pairs a force pass takes tens of microseconds on one core, and waking another
+// thread costs about as much as it saves (measured at N = 500 and 700 on the project's 2-core machine),
+// so small bodies stay on the calling thread. Either way the same tiles are summed in the same
+// order: the result does not change, only who computes it.
+constexpr std::size_t kMinPairsForThreads = 350000;  // N of about 840
+
+// pool.run, or a plain loop on the calling thread when `threaded` is false.
+void run_tasks(ThreadPool& pool, bool threaded, std::size_t count, const std::function<void(std::size_t)>& task) {
+    if (threaded) {
+        pool.run(count, task);
+    } else {
+        for (std::size_t t = 0; t < count; ++t) task(t);
+    }
+}
+
 }  // namespace
 
 bool PairForceKernel::supported(PairKernelVariant variant) {
@@ -239,7 +255,8 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 0.25f * in.c, 0.5f * in.k);  // see pair_tiles.h
     const detail::TileFunction tile = tile_function(variant_);
-    pool_.run(order_.size(), [&](std::size_t k) {
+    const bool threaded = in.n * (in.n - 1) / 2 >= kMinPairsForThreads;
+    run_tasks(pool_, threaded, order_.size(), [&](std::size_t k) {
         const std::size_t t = order_[k];
         float* out = partial_.data() + t * 6 * B;
         std::fill(out, out + 6 * B, 0.0f);
@@ -263,7 +280,7 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
             }
         }
     };
-    pool_.run(blocks_, reduce);
+    run_tasks(pool_, threaded && blocks_ >= 8, blocks_, reduce);
 }
 
 double PairForceKernel::elastic_energy(const PairInput& in) {
@@ -271,7 +288,7 @@ double PairForceKernel::elastic_energy(const PairInput& in) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 1.0f, 1.0f);
     const detail::StretchTileFunction tile = stretch_tile_function(variant_);
-    pool_.run(tile_i_.size(), [&](std::size_t t) {
+    run_tasks(pool_, in.n * (in.n - 1) / 2 >= kMinPairsForThreads, tile_i_.size(), [&](std::size_t t) {
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);
         const std::size_t j0 = J * B, j1 = std::min(j0 + B, in.n);

@@ -1,5 +1,6 @@
 #include "gl_util.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -10,7 +11,6 @@ void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
 void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
 void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 Buffer make_buffer() {
     GLuint id = 0;
@@ -36,11 +36,6 @@ Renderbuffer make_renderbuffer() {
     GLuint id = 0;
     glGenRenderbuffers(1, &id);
     return Renderbuffer(id);
-}
-Sampler make_sampler() {
-    GLuint id = 0;
-    glGenSamplers(1, &id);
-    return Sampler(id);
 }
 
 void stream(GLenum target, GLuint buffer, const void* data, GLsizeiptr bytes) {

@@ -40,21 +40,18 @@ void delete_vertex_array(GLuint id);
 void delete_texture(GLuint id);
 void delete_framebuffer(GLuint id);
 void delete_renderbuffer(GLuint id);
-void delete_sampler(GLuint id);
 
 using Buffer = Name<delete_buffer>;
 using VertexArray = Name<delete_vertex_array>;
 using Texture = Name<delete_texture>;
 using Framebuffer = Name<delete_framebuffer>;
 using Renderbuffer = Name<delete_renderbuffer>;
-using Sampler = Name<delete_sampler>;
 
 Buffer make_buffer();
 VertexArray make_vertex_array();
 Texture make_texture();
 Framebuffer make_framebuffer();
 Renderbuffer make_renderbuffer();
-Sampler make_sampler();
 
 // Replaces a buffer's contents without waiting for the GPU to finish reading the old ones:
 // the old storage is orphaned (glBufferData with no data) and the new bytes are written into

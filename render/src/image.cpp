@@ -9,14 +9,14 @@
 #include <zlib.h>
 
 namespace {
-// PNG's deflate stream through zlib at its best compression when the build has zlib: files
-// about a third smaller than the writer's own compressor gives. Either way, the same image
-// always gives the same bytes.
-unsigned char* deflate_best(unsigned char* data, int length, int* out_length, int /*quality*/) {
+// PNG's deflate stream through zlib when the build has it: files about a quarter smaller than
+// the writer's own compressor gives. zlib's default level: its best one is three times slower
+// at 800x600 for 7% less. Either way, the same image always gives the same bytes.
+unsigned char* deflate_zlib(unsigned char* data, int length, int* out_length, int /*quality*/) {
     uLongf size = compressBound(static_cast<uLong>(length));
     auto* out = static_cast<unsigned char*>(std::malloc(size));
     if (!out) return nullptr;
-    if (compress2(out, &size, data, static_cast<uLong>(length), Z_BEST_COMPRESSION) != Z_OK) {
+    if (compress2(out, &size, data, static_cast<uLong>(length), Z_DEFAULT_COMPRESSION) != Z_OK) {
         std::free(out);
         return nullptr;
     }
@@ -25,7 +25,7 @@ unsigned char* deflate_best(unsigned char* data, int length, int* out_length, in
 }
 }  // namespace
 
-#define STBIW_ZLIB_COMPRESS deflate_best
+#define STBIW_ZLIB_COMPRESS deflate_zlib
 #endif
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_STATIC

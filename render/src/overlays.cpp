@@ -26,7 +26,7 @@ glm::vec4 strain_color(const glm::vec4& rest, float strain) {
     return glm::mix(rest, strain > 0.0f ? kSpringStretched : kSpringCompressed, s);
 }
 
-// A fixed sequence (64-bit LCG, Knuth's MMIX constants): the same sample on every run.
+// A fixed sequence (a 64-bit linear congruential generator): the same sample on every run.
 struct Sequence {
     std::uint64_t state;
     std::uint32_t next(std::uint32_t bound) {

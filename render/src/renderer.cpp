@@ -1,11 +1,17 @@
+// The frame, pass by pass:
+//   1. the body's particles interpolated, normals recomputed, vertices streamed (deform.h)
+//   2. the sun's shadow map: depth moments of the body (and overlay spheres), mipmapped
+//   3. multisampled: the floor (grid, soft shadow, contact darkening), the solid body, the sky
+//      where nothing else is, the overlays and a see-through body, the always-visible markers
+//   4. resolve the samples, copy to the caller's framebuffer
 #include "render/renderer.h"
 
 #include <glad/gl.h>
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -27,8 +33,8 @@ double ms_since(Clock::time_point start) {
 }
 
 // The sun: high and to one side, so the shadow falls beside the body as well as under it.
-const glm::vec3 kSunDirection = glm::normalize(glm::vec3(-0.42f, -0.30f, 0.86f));
-constexpr int kShadowMapSize = 1024;
+const glm::vec3 kSunDirection = glm::normalize(glm::vec3(-0.62f, 0.05f, 0.78f));
+constexpr int kShadowMapSize = 512;
 constexpr float kSunAngularRadius = 0.06f;  // rad: a soft studio light rather than the real sun
 constexpr glm::vec3 kFloorColor{0.64f, 0.63f, 0.60f};
 constexpr float kGhostOpacity = 0.28f;
@@ -391,18 +397,8 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glDisable(GL_CULL_FACE);
 
-    // Sky behind everything.
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    s.sky.use();
-    set(s.sky.uniform("u_inverse_view_projection"), glm::inverse(view_projection));
-    set(s.sky.uniform("u_sun_dir"), kSunDirection);
-    set(s.sky.uniform("u_eye"), eye);
-    glBindVertexArray(s.empty_vao.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
 
     const float body_size = std::max(shape.rest_radius, 1e-3f);
     if (look.ground) {
@@ -448,6 +444,18 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         glDisable(GL_CULL_FACE);
     }
 
+    // The sky, on the far plane: only where nothing else was drawn (the cheaper order).
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    s.sky.use();
+    set(s.sky.uniform("u_inverse_view_projection"), glm::inverse(view_projection));
+    set(s.sky.uniform("u_sun_dir"), kSunDirection);
+    set(s.sky.uniform("u_eye"), eye);
+    glBindVertexArray(s.empty_vao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+
     // Overlays inside or on the body, depth tested.
     // A see-through body wraps them: its far side first, the lines, then its near side.
     glEnable(GL_BLEND);
@@ -488,6 +496,8 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     // --- Leave GL as a caller expects to find it ----------------------------------------------
     glBindFramebuffer(GL_FRAMEBUFFER, target_framebuffer);
     glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glBindTexture(GL_TEXTURE_2D, 0);

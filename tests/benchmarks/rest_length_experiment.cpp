@@ -21,6 +21,14 @@ inline F16 sqrt_v(F16 a) { return F16(_mm512_sqrt_ps(__m512(a))); }
 inline F8 max_v(F8 a, F8 b) { return F8(_mm256_max_ps(__m256(a), __m256(b))); }
 inline F16 max_v(F16 a, F16 b) { return F16(_mm512_max_ps(__m512(a), __m512(b))); }
 
+inline float hsum(F8 v) {
+    const __m256 a = __m256(v);
+    __m128 s = _mm_add_ps(_mm256_castps256_ps128(a), _mm256_extractf128_ps(a, 1));
+    s = _mm_add_ps(s, _mm_movehl_ps(s, s));
+    return _mm_cvtss_f32(_mm_add_ss(s, _mm_movehdup_ps(s)));
+}
+inline float hsum(F16 v) { return _mm512_reduce_add_ps(__m512(v)); }
+
 template <class F>
 F load(const float* p) {
     F v;
@@ -83,11 +91,7 @@ void tile_w(const Particles& p, const float* stored_l0, std::size_t i0, std::siz
         }
         for (; j < full_end; j += W) pairs<F, I, Stored, false>(p, l0_row, j, j0, row, f, k, out_j + (j - j0), I{});
         if (j < j1) pairs<F, I, Stored, true>(p, l0_row, j, j0, row, f, k, out_j + (j - j0), mask(j));
-        for (int a = 0; a < 3; ++a) {
-            float sum = 0.0f;
-            for (std::size_t w = 0; w < W; ++w) sum += f[a][w];
-            out_i[a * kTile + (i - i0)] += sum;
-        }
+        for (int a = 0; a < 3; ++a) out_i[a * kTile + (i - i0)] += hsum(f[a]);
     }
 }
 

@@ -102,11 +102,11 @@ inline std::vector<double> force_scales(const PairState& s) {
     return scale;
 }
 
-// Largest |f_i - g_i| / S_i over the particles (0 when both are exactly zero).
-inline double worst_relative_difference(const PairState& s, const Vec3Array& f, const Vec3Array& g) {
-    const std::vector<double> scale = force_scales(s);
+// Largest |f_i - g_i| / S_i over the particles (0 when both are exactly zero), with the scales
+// S_i from force_scales.
+inline double worst_relative_difference(const std::vector<double>& scale, const Vec3Array& f, const Vec3Array& g) {
     double worst = 0.0;
-    for (std::size_t i = 0; i < s.size(); ++i) {
+    for (std::size_t i = 0; i < scale.size(); ++i) {
         const double dx = double(f.x[i]) - g.x[i], dy = double(f.y[i]) - g.y[i], dz = double(f.z[i]) - g.z[i];
         const double diff = std::sqrt(dx * dx + dy * dy + dz * dz);
         if (!std::isfinite(diff)) return INFINITY;

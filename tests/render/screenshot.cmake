@@ -20,6 +20,13 @@ foreach(var MODE SOFTBODY WORK)
   endif()
 endforeach()
 
+# Relative paths are taken from where the script was started (the commands run in ${HERE}).
+foreach(var SOFTBODY WORK COMPARE)
+  if(${var})
+    get_filename_component(${var} "${${var}}" ABSOLUTE)
+  endif()
+endforeach()
+
 # Renders one case with extra arguments; sets <out_var> to the PNG written.
 function(render_case name case_args out_var)
   set(out_dir ${WORK}/actual/${name})
@@ -44,7 +51,9 @@ function(compare name actual reference)
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message("${out}${err}")
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${name}: screenshot test failed")
+    message(FATAL_ERROR "${name}: screenshot test failed. If the new picture is the intended one, "
+                        "re-bless on purpose: cmake --build <build folder> --target bless-screenshots "
+                        "(see tests/render/README.md)")
   endif()
 endfunction()
 
@@ -60,6 +69,7 @@ if(MODE STREQUAL "bless")
     message("blessed references/${name}.png (${bytes} bytes)")
   endforeach()
 elseif(MODE STREQUAL "test")
+  file(REMOVE ${WORK}/failures/${CASE}_actual.png ${WORK}/failures/${CASE}_expected.png ${WORK}/failures/${CASE}_diff.png)
   render_case(${CASE} "${CASE_${CASE}}" file)
   compare(${CASE} ${file} ${HERE}/references/${CASE}.png)
 elseif(MODE STREQUAL "noise")

@@ -8,8 +8,9 @@
 //
 // draw() renders into its own multisampled framebuffer and resolves into `target` (0: the
 // context's default framebuffer). It sets every GL state it relies on and leaves the ones it
-// touched at GL's defaults (no blending, no depth test, no program, VAO 0), so a UI drawn
-// after it starts from a known state.
+// touched at GL's defaults (no blending, no depth test or culling, no program, VAO 0, texture
+// 0, clear colour 0), with `target` bound and the viewport covering width x height, so a UI
+// drawn after it starts from a known state.
 #pragma once
 
 #include <memory>
