@@ -58,9 +58,12 @@ double elastic_energy_reference(const PairInput& in) {
 // Inside a tile, particle i is held in registers against 8 (AVX2) or 16 (AVX-512) particles j
 // at a time; the force on i is summed in registers, the equal and opposite force on j goes
 // straight into the tile's buffer. The rest length l0 = |r_j - r_i| is recomputed from the
-// rest positions: storing one float per pair would cost 2 N^2 bytes (200 MB at N = 10,000,
-// 800 MB at N = 20,000) and measured no faster at N = 2,500 to 10,000 (BM_RestLength in
-// tests/benchmarks: within a few percent either way, and memory-bound at the larger sizes).
+// rest positions. Storing one float per pair instead would cost 2 N^2 bytes (200 MB at
+// N = 10,000, 800 MB at N = 20,000, against this kernel's 5 and 20 MB) and buys little: with the
+// AVX-512 tile it measured 10% faster at N = 2,500 (where the table still fits in cache and a
+// tick is already a sixth of real time) and within 3% either way at 5,000 and 10,000, where it
+// streams from memory; with the AVX2 tile, 7 to 16% faster on one thread (BM_RestLength in
+// tests/benchmarks).
 //
 // Accuracy: the SIMD tiles take 1/l from the CPU's approximate reciprocal square root refined
 // by one Newton step (relative error about 4e-7 with AVX2, float rounding with AVX-512), and
