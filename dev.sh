@@ -10,7 +10,7 @@ cd "$(dirname "$0")"
 PACKAGES=(
   cmake g++ pkg-config
   libglfw3-dev libglm-dev libimgui-dev libosmesa6-dev libtinyobjloader-dev python3-glad libstb-dev
-  nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev libgtest-dev libbenchmark-dev zlib1g-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
 BUILD_DIR=${BUILD_DIR:-build}

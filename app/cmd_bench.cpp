@@ -650,7 +650,7 @@ int bench_command(int argc, char** argv) {
                       << " s (fast kernel, " << threads << " threads; a size that misses it although some of its ticks"
                       << " made it is measured once more)...\n";
         }
-        std::size_t lo = 0, hi = kMaxParticles + 1;  // lo runs in real time, hi does not
+        std::size_t lo = 0, hi = kMaxParticles + 1;  // lo runs in real time, hi does not (none yet: above the max)
         Measurement at_lo, at_hi;
         for (const Row& r : rows) {
             if (r.scene != "cloud" || r.kernel != fast_name || r.m.threads != threads || !r.m.measured || r.m.diverged) continue;
@@ -666,33 +666,30 @@ int bench_command(int argc, char** argv) {
         const std::size_t resolution = quick ? 500 : 50;
         const double probe_budget = quick ? 0.1 : std::max(0.3, 0.4 * budget);
         if (lo > 0 && hi > lo) {
-            if (hi > kMaxParticles) {  // no failing size yet: probe the top
-                hi = kMaxParticles;
-                at_hi = measure(Kernel::Fast, [hi] { return cloud_mesh(hi); }, threads, probe_budget);
-                if (at_hi.measured && at_hi.median_s <= dt) lo = hi, at_lo = at_hi;
-            }
-            while (hi - lo > resolution) {
-                const std::size_t mid = (lo + hi) / 2 / 10 * 10;
-                Measurement m = measure(Kernel::Fast, [mid] { return cloud_mesh(mid); }, threads, probe_budget);
+            auto probe = [&](std::size_t n) {
+                Measurement m = measure(Kernel::Fast, [n] { return cloud_mesh(n); }, threads, probe_budget);
                 if (m.measured && m.median_s > dt && m.best_s <= dt) {
                     // Some ticks were fast enough: other work may have slowed the rest. Once more.
-                    const Measurement again = measure(Kernel::Fast, [mid] { return cloud_mesh(mid); }, threads, probe_budget);
+                    const Measurement again = measure(Kernel::Fast, [n] { return cloud_mesh(n); }, threads, probe_budget);
                     if (again.measured && again.median_s < m.median_s) m = again;
                 }
-                log << "  N " << mid << ": " << m.substeps << " substeps, " << ms(m.median_s) << " ms/tick"
-                    << (m.measured && m.median_s <= dt ? " (real time)" : "") << "\n";
-                if (m.measured && !m.diverged && m.median_s <= dt) lo = mid, at_lo = m;
-                else hi = mid, at_hi = m;
-            }
+                const bool real = m.measured && !m.diverged && m.median_s <= dt;
+                log << "  N " << n << ": " << m.substeps << " substeps, " << ms(m.median_s) << " ms/tick"
+                    << (real ? " (real time)" : "") << "\n";
+                if (real) lo = n, at_lo = m;
+                else hi = n, at_hi = m;
+            };
+            while (hi > kMaxParticles && lo < kMaxParticles) probe(std::min(2 * lo, kMaxParticles));  // find a too-slow size
+            while (hi <= kMaxParticles && hi - lo > resolution) probe((lo + hi) / 2 / 10 * 10);
             real_time = {{"largest_particles", lo},   {"substeps", at_lo.substeps},
                          {"ms_per_tick", ms(at_lo.median_s)}, {"threads", at_lo.threads},
                          {"first_too_slow", hi},      {"first_too_slow_substeps", at_hi.substeps},
                          {"first_too_slow_ms_per_tick", ms(at_hi.median_s)}, {"resolution", resolution}};
             if (!json) {
-                std::printf("largest real-time cloud: N = %zu with %d substeps, %.2f ms a tick (%.1f ticks/s); "
-                            "N = %zu takes %.2f ms (%d substeps)\n",
-                            lo, at_lo.substeps, ms(at_lo.median_s), 1.0 / at_lo.median_s, hi, ms(at_hi.median_s),
-                            at_hi.substeps);
+                std::printf("largest real-time cloud: N = %zu with %d substeps, %.2f ms a tick (%.1f ticks/s)", lo,
+                            at_lo.substeps, ms(at_lo.median_s), 1.0 / at_lo.median_s);
+                if (hi <= kMaxParticles) std::printf("; N = %zu takes %.2f ms (%d substeps)", hi, ms(at_hi.median_s), at_hi.substeps);
+                std::printf("\n");
             }
         } else if (!json) {
             std::cout << "none of the measured sizes runs in real time\n";

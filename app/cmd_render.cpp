@@ -33,7 +33,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR\n"
     "                       [--size WxH] [--camera KEY=VALUE,...] [--overlay NAME,...] [--body STYLE]\n"
-    "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--samples N] [--threads N]\n"
+    "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--no-pattern] [--samples N]\n"
+    "                       [--threads N]\n"
     "       softbody render --bench [--frames N]   (streaming, normals and frame times; no files)\n"
     "  --at        times in seconds; each is drawn between the two ticks around it\n"
     "  --out       folder for DIR/<scene>_t<time>.png (created if missing)\n"
@@ -43,6 +44,7 @@ constexpr const char* kUsage =
     "              start of the fall once, so every image shares one camera)\n"
     "  --overlay   particles, springs, pins, com, velocity, or none (default: pins)\n"
     "  --body      solid, ghost (see-through) or hidden (default: solid)\n"
+    "  --no-pattern  a plain body, without the soft checks that show it turn\n"
     "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
     "  --debug-offset DX,DY,DZ and --debug-flip-normals draw deliberate faults (the screenshot\n"
     "              tests' negative checks)";
@@ -233,6 +235,8 @@ int render_command(int argc, char** argv) {
             hide_ground = true;
         } else if (option == "--no-shadows") {
             frame.appearance.shadows = false;
+        } else if (option == "--no-pattern") {
+            frame.appearance.pattern = false;
         } else if (option == "--samples") {
             frame.appearance.samples = int(parse_int(option, args.value(option), 1, 4));
         } else if (option == "--threads") {
@@ -364,7 +368,7 @@ int render_bench(int argc, char** argv) {
     OffscreenContext context(width, height);
     render::Renderer renderer(context.loader());
     std::cout << "renderer: " << renderer.info().renderer << ", " << renderer.info().version << "\n";
-    std::cout << "medians over " << frames << " frames (after 5 warm-up frames), 800x600, 4x MSAA, soft shadows\n\n";
+    std::cout << "medians over " << frames << " frames (after 10 warm-up frames), 800x600, 4x MSAA, soft shadows\n\n";
     std::printf("%-22s %9s %10s %15s %10s %10s\n", "mesh", "vertices", "triangles", "normals ms", "stream ms",
                 "frame ms");
 
@@ -379,7 +383,7 @@ int render_bench(int argc, char** argv) {
         frame.body.positions = span_of(x);
         frame.camera.frame({0.0f, 0.0f, 0.5f}, 0.8f, aspect);
         std::vector<double> surface, stream, total;
-        for (int f = -5; f < frames; ++f) {
+        for (int f = -10; f < frames; ++f) {
             // A squash-and-stretch wobble about the torus's centre.
             const float s = 1.0f + 0.2f * std::sin(0.3f * float(f));
             for (std::size_t i = 0; i < n; ++i) {
@@ -410,7 +414,7 @@ int render_bench(int argc, char** argv) {
     frame_body(world, params, aspect, frame.camera, 1.0f);
     std::vector<double> total, png;
     const auto png_path = std::filesystem::temp_directory_path() / "softbody_render_bench.png";
-    for (int f = -5; f < frames; ++f) {
+    for (int f = -10; f < frames; ++f) {
         const auto start = Clock::now();
         renderer.draw(frame, width, height);
         const render::Image image = renderer.read_back();

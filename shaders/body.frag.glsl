@@ -8,17 +8,29 @@ uniform vec3 u_body_color;     // sRGB
 uniform float u_opacity;       // 1 solid; less for the see-through style
 uniform float u_ground_height;
 uniform float u_contact_range; // m over which the floor's occlusion fades out
+uniform float u_pattern;       // 1: soft checks in material coordinates
 uniform float u_two_sided;     // 1: light back faces as if seen from their side (see-through style)
 
 in vec3 v_world;
 in vec3 v_normal;
+in vec3 v_material;
 out vec4 o_color;
+
+// Soft three-dimensional checks, three across the body's radius, carried by the material: they
+// turn with the body and stretch with it. Edges are blurred over about a pixel (fwidth).
+float checks(vec3 m) {
+    vec3 s = sin(m * 4.71238898);  // 1.5 pi: three half-periods per radius
+    float c = s.x * s.y * s.z;
+    float w = fwidth(c) + 0.02;
+    return smoothstep(-w, w, c);
+}
 
 void main() {
     vec3 n = normalize(v_normal);
     if (u_two_sided > 0.5 && !gl_FrontFacing) n = -n;
     vec3 v = normalize(u_eye - v_world);
     vec3 base = srgb_to_linear(u_body_color);
+    if (u_pattern > 0.5) base *= mix(0.84, 1.0, checks(v_material));
 
     float wrap = 0.25;
     float n_dot_l = dot(n, u_sun_dir);

@@ -1,5 +1,7 @@
 #include "gui/demo.h"
 
+#include "body_view.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -54,8 +56,7 @@ void Demo::after_load(const Params& params) {
     built_with_ = params;
     clock_ = FixedClock(params.dt, max_ticks_per_frame);
     energy_.clear();
-    appearance.ground = params.ground;
-    appearance.ground_height = params.ground_height;
+    match_ground(params, appearance);
     frame_body();
     sample_energy();
 }
@@ -103,8 +104,7 @@ void Demo::edit(const Params& params) {
     try {
         world_->set_params(params);
         clock_.set_dt(params.dt);
-        appearance.ground = params.ground;
-        appearance.ground_height = params.ground_height;
+        match_ground(params, appearance);
     } catch (const std::exception& e) {
         error_ = e.what();
     }
@@ -173,14 +173,7 @@ void Demo::frame_body() {
 render::Frame Demo::make_frame() const {
     render::Frame frame;
     const World& w = *world_;
-    auto span = [](const Vec3Array& a) { return render::Vec3Span{a.x.data(), a.y.data(), a.z.data(), a.size()}; };
-    frame.body.mesh = &w.mesh();
-    frame.body.positions = span(w.positions());
-    frame.body.previous_positions = span(w.previous_tick_positions());
-    frame.body.alpha = paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha());
-    frame.body.velocities = span(w.velocities());
-    frame.body.rest_positions = span(w.rest_positions());
-    frame.body.inverse_masses = std::span<const float>(w.inverse_masses().data(), w.inverse_masses().size());
+    frame.body = body_view(w, paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha()));
     frame.camera = camera;
     frame.overlays = overlays;
     frame.appearance = appearance;

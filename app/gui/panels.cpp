@@ -351,8 +351,11 @@ void Panels::display(Demo& demo) {
     ImGui::ColorEdit3("colour", &a.body_color.x, ImGuiColorEditFlags_NoInputs);
     int samples_index = a.samples >= 4 ? 2 : a.samples >= 2 ? 1 : 0;
     if (ImGui::Combo("anti-aliasing", &samples_index, "off\0" "2x\0" "4x\0")) a.samples = samples_index == 0 ? 1 : samples_index == 1 ? 2 : 4;
+    ImGui::Checkbox("pattern on the body", &a.pattern);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Soft checks fixed in the body's material, so rolling and squash show.");
     int springs = static_cast<int>(a.max_springs);
-    if (ImGui::SliderInt("springs drawn", &springs, 50, 5000, "%d", ImGuiSliderFlags_Logarithmic)) a.max_springs = static_cast<std::size_t>(springs);
+    if (ImGui::SliderInt("inner springs drawn", &springs, 0, 2000, "%d", ImGuiSliderFlags_Logarithmic)) a.max_springs = static_cast<std::size_t>(springs);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Springs along the surface are drawn, plus this many more from a fixed sample.");
 }
 
 void Panels::presets(Demo& demo) {

@@ -1,43 +1,68 @@
 // Reading OBJ and OFF files into a RawMesh. Every number and index is checked, with the line
-// it came from, before anything trusts it: tinyobjloader on its own turns `nan` into 0 and
-// only warns about an index out of range.
+// it came from, before anything trusts it: tinyobjloader on its own turns `nan` into 0, only
+// warns about an index out of range, and its polygon splitting takes time quadratic in the
+// corners (and drops parts of a polygon that crosses itself). So the file is checked here
+// first, tinyobjloader reads the numbers and hands over each face whole, and the faces are
+// split into triangles here, in linear time.
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <cstring>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <istream>
+#include <streambuf>
+#include <string>
+#include <vector>
 
 #include "physics/error.h"
+#include "message_text.h"
 #include "physics/mesh.h"
+#include "text_file.h"
 
 namespace softbody {
 
 namespace {
 
 constexpr std::size_t kMaxFileBytes = std::size_t{1} << 30;  // 1 GiB: far beyond any usable mesh
-constexpr std::size_t kMaxElements = 50'000'000;              // vertices or faces a file may declare
+constexpr std::size_t kMaxElements = 50'000'000;              // vertices, normals or UVs a file may hold
 
-// Splits text into lines and whitespace-separated tokens, remembering line numbers.
+// Splits text into lines and tokens, remembering line numbers. Lines end at "\n", "\r\n" or a
+// lone "\r"; tokens are separated by spaces and tabs. These are the OBJ reader's own rules, so
+// the check below sees the same lines and tokens as the reader.
 class LineReader {
 public:
-    explicit LineReader(const std::string& text) : text_(text) {}
+    enum class Comments {
+        TokenStart,  // OBJ: a token that starts with '#' starts a comment ("3#x" is one token)
+        Anywhere,    // OFF: a '#' anywhere starts a comment
+    };
+    LineReader(const std::string& text, Comments comments) : text_(text), comments_(comments) {}
 
-    // Next line with at least one token (comments after '#' removed); false at the end.
+    // Next line with at least one token (comments removed); false at the end.
     bool next(std::vector<std::string_view>& tokens) {
         while (pos_ < text_.size()) {
-            const std::size_t end = std::min(text_.find('\n', pos_), text_.size());
+            std::size_t end = pos_;
+            while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') ++end;
             std::string_view line(text_.data() + pos_, end - pos_);
             pos_ = end + 1;
+            if (end < text_.size() && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
             ++line_;
-            if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+            had_comment_ = false;
+            if (comments_ == Comments::Anywhere) {
+                if (const auto hash = line.find('#'); hash != std::string_view::npos) {
+                    line = line.substr(0, hash);
+                    had_comment_ = true;
+                }
+            }
             tokens.clear();
             std::size_t i = 0;
             while (i < line.size()) {
                 while (i < line.size() && is_space(line[i])) ++i;
+                if (i < line.size() && line[i] == '#' && comments_ == Comments::TokenStart) {
+                    had_comment_ = true;
+                    break;
+                }
                 const std::size_t start = i;
                 while (i < line.size() && !is_space(line[i])) ++i;
                 if (i > start) tokens.push_back(line.substr(start, i - start));
@@ -47,45 +72,54 @@ public:
         return false;
     }
     std::size_t line() const { return line_; }
+    bool had_comment() const { return had_comment_; }
 
 private:
-    static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+    static bool is_space(char c) { return c == ' ' || c == '\t'; }
     const std::string& text_;
+    Comments comments_;
     std::size_t pos_ = 0;
     std::size_t line_ = 0;
+    bool had_comment_ = false;
 };
 
 [[noreturn]] void malformed(const std::string& origin, std::size_t line, const std::string& what) {
     throw InputError(origin + ":" + std::to_string(line) + ": " + what);
 }
 
+// A leading '+' is allowed ("+1.5"), but only one sign.
+std::string_view without_plus(std::string_view token) {
+    if (token.size() >= 2 && token.front() == '+' && token[1] != '-' && token[1] != '+') token.remove_prefix(1);
+    return token;
+}
+
 bool to_float(std::string_view token, float& out) {
-    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    token = without_plus(token);
     double value = 0.0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (ec != std::errc() || end != token.data() + token.size()) return false;
+    if (token.empty() || ec != std::errc() || end != token.data() + token.size()) return false;
     out = static_cast<float>(value);
     return std::isfinite(out);
 }
 
 bool to_long(std::string_view token, long long& out) {
-    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    token = without_plus(token);
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
     return !token.empty() && ec == std::errc() && end == token.data() + token.size();
 }
 
-std::string quoted(std::string_view token) {
-    std::string out("'");
-    out.append(token.substr(0, 40)).append(token.size() > 40 ? "...'" : "'");
-    return out;
-}
+// A token for a message: at most 40 characters, control bytes shown as '?', so the message
+// stays one readable line whatever the file holds.
+std::string quoted(std::string_view token) { return "'" + printable(token, 40) + "'"; }
 
-// Checks what tinyobjloader would accept silently: numbers that are not finite numbers, and
-// face indices that point at no vertex (OBJ indices are 1-based; negative ones count back).
+// Checks what tinyobjloader would accept silently: numbers that are not finite numbers, face
+// indices that point at no vertex (OBJ indices are 1-based; negative ones count back from the
+// last one defined so far), and more triangles than kMaxTriangles.
 void check_obj(const std::string& text, const std::string& origin) {
-    LineReader reader(text);
+    LineReader reader(text, LineReader::Comments::TokenStart);
     std::vector<std::string_view> tokens;
     long long counts[3] = {0, 0, 0};  // v, vt, vn seen so far
+    std::size_t triangles = 0;
     while (reader.next(tokens)) {
         const std::string_view kind = tokens[0];
         const std::size_t line = reader.line();
@@ -100,10 +134,17 @@ void check_obj(const std::string& text, const std::string& origin) {
                     malformed(origin, line, "coordinate " + quoted(tokens[t]) + " is not a finite number");
                 }
             }
-            ++counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2];
-            if (counts[0] > static_cast<long long>(kMaxElements)) malformed(origin, line, "too many vertices");
+            long long& count = counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2];
+            if (++count > static_cast<long long>(kMaxElements)) {
+                malformed(origin, line, "more than " + std::to_string(kMaxElements) + " '" + std::string(kind) +
+                                            "' lines; too many for a mesh");
+            }
         } else if (kind == "f" || kind == "l" || kind == "p") {
             const std::size_t minimum = kind == "f" ? 3 : kind == "l" ? 2 : 1;
+            if (reader.had_comment()) {
+                // The reader would take the comment's words for indices.
+                malformed(origin, line, "a comment after a face's indices is not supported; put it on a line of its own");
+            }
             if (tokens.size() < minimum + 1) {
                 malformed(origin, line, "'" + std::string(kind) + "' needs at least " + std::to_string(minimum) + " vertices");
             }
@@ -113,6 +154,9 @@ void check_obj(const std::string& text, const std::string& origin) {
                     const auto slash = rest.find('/');
                     const std::string_view index_text = rest.substr(0, slash);
                     rest = slash == std::string_view::npos ? std::string_view{} : rest.substr(slash + 1);
+                    if (part == 2 && slash != std::string_view::npos) {
+                        malformed(origin, line, "face corner " + quoted(tokens[t]) + " has more than three indices");
+                    }
                     if (index_text.empty() && part > 0) continue;  // "1//3": no texture coordinate
                     const long long available = counts[part == 0 ? 0 : part == 1 ? 1 : 2];
                     long long index = 0;
@@ -124,84 +168,135 @@ void check_obj(const std::string& text, const std::string& origin) {
                     }
                 }
             }
+            if (kind == "f") {
+                triangles += tokens.size() - 3;  // k corners make k - 2 triangles
+                if (triangles > kMaxTriangles) {
+                    malformed(origin, line, "more than " + std::to_string(kMaxTriangles) +
+                                                " triangles; too many for a mesh (use a smaller or decimated one)");
+                }
+            }
         }
     }
 }
 
-std::string read_file(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(path + ": is a folder, not a mesh file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open mesh file (" + std::strerror(errno) + ")");
-    std::string text;
-    char buffer[1 << 16];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-        text.append(buffer, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > kMaxFileBytes) throw InputError(path + ": larger than 1 GiB; too large for a mesh");
+// Lets the OBJ reader read a string in place, without a copy of a file that may be large.
+class TextBuffer : public std::streambuf {
+public:
+    explicit TextBuffer(const std::string& text) {
+        char* begin = const_cast<char*>(text.data());  // only ever read: no put area is set
+        setg(begin, begin, begin + text.size());
     }
-    if (in.bad()) throw InputError(path + ": cannot read mesh file");
-    return text;
-}
+};
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
+// What the reader's callbacks build. An error stops the building (the reader cannot be
+// stopped, so later callbacks are ignored) and is thrown once the reader returns.
+struct ObjBuilder {
+    RawMesh raw;
+    std::string error;
+
+    void fail(const std::string& what) {
+        if (error.empty()) error = what;
+    }
+
+    // An OBJ index (1-based, negative counts back, 0 absent) as a 0-based one, or -1 when
+    // absent; -2 when it points at nothing.
+    static std::int32_t resolve(int index, std::size_t count) {
+        const long long n = static_cast<long long>(count);
+        long long i = index > 0 ? index - 1LL : index < 0 ? n + index : -1;
+        if (index != 0 && (i < 0 || i >= n)) return -2;
+        return static_cast<std::int32_t>(i);
+    }
+
+    void add_face(const tinyobj::index_t* indices, int count) {
+        if (!error.empty()) return;
+        if (count < 3) return fail("a face needs at least three vertices");
+        corners.clear();
+        for (int c = 0; c < count; ++c) {
+            Corner corner;
+            corner.position = resolve(indices[c].vertex_index, raw.positions.size());
+            corner.uv = resolve(indices[c].texcoord_index, raw.uvs.size());
+            corner.normal = resolve(indices[c].normal_index, raw.normals.size());
+            if (corner.position < 0 || corner.uv < -1 || corner.normal < -1) {
+                return fail("a face index does not refer to a vertex, texture coordinate or normal");
+            }
+            corners.push_back(corner);
+        }
+        if (raw.triangle_corners.size() / 3 + corners.size() - 2 > kMaxTriangles) {
+            return fail("more than " + std::to_string(kMaxTriangles) + " triangles; too many for a mesh");
+        }
+        auto triangle = [&](std::size_t a, std::size_t b, std::size_t c) {
+            raw.triangle_corners.push_back(corners[a]);
+            raw.triangle_corners.push_back(corners[b]);
+            raw.triangle_corners.push_back(corners[c]);
+        };
+        if (corners.size() == 4) {
+            // Along the shorter diagonal (as the reader's own splitting did, so quads keep
+            // their triangles), computed in float as it was.
+            auto distance_sq = [&](std::size_t a, std::size_t b) {
+                const Vec3 d = raw.positions[static_cast<std::size_t>(corners[b].position)] -
+                               raw.positions[static_cast<std::size_t>(corners[a].position)];
+                return d.x * d.x + d.y * d.y + d.z * d.z;
+            };
+            if (distance_sq(0, 2) < distance_sq(1, 3)) {
+                triangle(0, 1, 2);
+                triangle(0, 2, 3);
+            } else {
+                triangle(0, 1, 3);
+                triangle(1, 2, 3);
+            }
+            return;
+        }
+        for (std::size_t c = 1; c + 1 < corners.size(); ++c) triangle(0, c, c + 1);  // a fan
+    }
+
+private:
+    std::vector<Corner> corners;  // kept between faces: no allocation per face
+};
 
 }  // namespace
 
 RawMesh parse_obj_text(const std::string& text, const std::string& origin) {
     check_obj(text, origin);
 
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(text, std::string(), config)) {
-        std::string message = reader.Error();
-        while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
-        if (const auto nl = message.find('\n'); nl != std::string::npos) message = message.substr(0, nl);
-        throw InputError(origin + ": malformed OBJ: " + (message.empty() ? "unreadable" : message));
-    }
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    tinyobj::callback_t callback;
+    callback.vertex_cb = [](void* user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
+        static_cast<ObjBuilder*>(user)->raw.positions.push_back({x, y, z});
+    };
+    callback.normal_cb = [](void* user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) {
+        auto* builder = static_cast<ObjBuilder*>(user);
+        const Vec3 n{x, y, z};
+        if (!is_finite(n)) builder->fail("a normal is not finite");
+        builder->raw.normals.push_back(n);
+    };
+    callback.texcoord_cb = [](void* user, tinyobj::real_t u, tinyobj::real_t v, tinyobj::real_t) {
+        auto* builder = static_cast<ObjBuilder*>(user);
+        if (!std::isfinite(u) || !std::isfinite(v)) builder->fail("a texture coordinate is not finite");
+        builder->raw.uvs.push_back({u, v});
+    };
+    callback.index_cb = [](void* user, tinyobj::index_t* indices, int count) {
+        static_cast<ObjBuilder*>(user)->add_face(indices, count);
+    };
 
-    RawMesh raw;
-    const std::size_t vertex_count = attrib.vertices.size() / 3;
-    raw.positions.reserve(vertex_count);
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-        raw.positions.push_back({attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]});
+    ObjBuilder builder;
+    TextBuffer buffer(text);
+    std::istream in(&buffer);
+    std::string warnings, errors;
+    // No material reader: `mtllib` lines are skipped, and no other file is ever opened.
+    const bool ok = tinyobj::LoadObjWithCallback(in, callback, &builder, nullptr, &warnings, &errors);
+    if (!ok && builder.error.empty()) {
+        while (!errors.empty() && (errors.back() == '\n' || errors.back() == '\r')) errors.pop_back();
+        if (const auto nl = errors.find('\n'); nl != std::string::npos) errors = errors.substr(0, nl);
+        builder.fail(errors.empty() ? "unreadable" : errors);
     }
-    for (std::size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
-        raw.normals.push_back({attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]});
+    if (!builder.error.empty()) throw InputError(origin + ": malformed OBJ: " + builder.error);
+    for (const Vec3& p : builder.raw.positions) {
+        if (!is_finite(p)) throw InputError(origin + ": malformed OBJ: a vertex coordinate is not finite");
     }
-    for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2) {
-        raw.uvs.push_back({attrib.texcoords[i], attrib.texcoords[i + 1]});
-    }
-    auto in_range = [](int index, std::size_t size) { return index >= -1 && index < static_cast<long long>(size); };
-    for (const auto& shape : reader.GetShapes()) {
-        std::size_t offset = 0;
-        for (const unsigned char corners : shape.mesh.num_face_vertices) {
-            if (corners == 3 && offset + 3 <= shape.mesh.indices.size()) {
-                for (std::size_t c = 0; c < 3; ++c) {
-                    const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-                    if (index.vertex_index < 0 || !in_range(index.vertex_index, vertex_count) ||
-                        !in_range(index.normal_index, raw.normals.size()) ||
-                        !in_range(index.texcoord_index, raw.uvs.size())) {
-                        throw InputError(origin + ": malformed OBJ: a face index is out of range");
-                    }
-                    raw.triangle_corners.push_back({index.vertex_index, index.normal_index, index.texcoord_index});
-                }
-            }
-            offset += corners;
-        }
-    }
-    return raw;
+    return std::move(builder.raw);
 }
 
 RawMesh parse_off_text(const std::string& text, const std::string& origin) {
-    LineReader reader(text);
+    LineReader reader(text, LineReader::Comments::Anywhere);
     std::vector<std::string_view> tokens;
     if (!reader.next(tokens)) throw InputError(origin + ": empty file; expected an OFF header");
 
@@ -223,7 +318,7 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
     }
     if (counts[0] < 0 || counts[1] < 0 || counts[0] > static_cast<long long>(kMaxElements) ||
         counts[1] > static_cast<long long>(kMaxElements)) {
-        malformed(origin, reader.line(), "vertex or face count out of range");
+        malformed(origin, reader.line(), "vertex or face count out of range (0 to " + std::to_string(kMaxElements) + ")");
     }
 
     RawMesh raw;
@@ -240,16 +335,17 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
         }
         raw.positions.push_back(p);
     }
+    std::vector<std::int32_t> face;
     for (long long f = 0; f < counts[1]; ++f) {
         if (!reader.next(tokens)) {
             malformed(origin, reader.line(), "file ends after " + std::to_string(f) + " of " +
                                                  std::to_string(counts[1]) + " faces");
         }
         long long k = 0;
-        if (!to_long(tokens[0], k) || k < 1 || static_cast<std::size_t>(k) + 1 > tokens.size()) {
+        if (!to_long(tokens[0], k) || k < 1 || static_cast<unsigned long long>(k) + 1 > tokens.size()) {
             malformed(origin, reader.line(), "a face must start with its vertex count, then that many indices");
         }
-        std::vector<std::int32_t> face;
+        face.clear();
         for (long long c = 1; c <= k; ++c) {
             long long index = 0;
             if (!to_long(tokens[static_cast<std::size_t>(c)], index) || index < 0 || index >= counts[0]) {
@@ -257,6 +353,10 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
                                                      " is not one of the " + std::to_string(counts[0]) + " vertices");
             }
             face.push_back(static_cast<std::int32_t>(index));
+        }
+        if (face.size() >= 3 && raw.triangle_corners.size() / 3 + face.size() - 2 > kMaxTriangles) {
+            malformed(origin, reader.line(), "more than " + std::to_string(kMaxTriangles) +
+                                                 " triangles; too many for a mesh (use a smaller or decimated one)");
         }
         for (std::size_t c = 1; c + 1 < face.size(); ++c) {  // a fan: (0, c, c+1)
             raw.triangle_corners.push_back({face[0], -1, -1});
@@ -268,11 +368,12 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
 }
 
 Mesh load_mesh(const std::string& path) {
-    const std::string ext = lower_extension(path);
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".obj" && ext != ".off") {
         throw InputError(path + ": unsupported mesh format '" + ext + "' (use .obj or .off)");
     }
-    const std::string text = read_file(path);
+    const std::string text = read_text_file(path, kMaxFileBytes, "mesh file");
     const RawMesh raw = ext == ".obj" ? parse_obj_text(text, path) : parse_off_text(text, path);
     return build_mesh(raw, path);
 }

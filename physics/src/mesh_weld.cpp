@@ -1,9 +1,13 @@
 // From a file's vertices to particles: weld coincident positions, then build the render
 // vertices (with their normal slots) that map back onto the particles.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
+#include <tuple>
 #include <unordered_map>
+#include <vector>
 
 #include "physics/error.h"
 #include "physics/mesh.h"
@@ -34,7 +38,16 @@ constexpr float kSharpClusterCos = 0.94f;  // 20 degrees
 
 Vec3 normalized(const Vec3& v) {
     const float l = length(v);
-    return l > 0.0f ? v / l : Vec3{};
+    if (l > 0.0f && std::isfinite(l)) return v / l;
+    // |v|^2 overflowed or underflowed in float (a vector near 1e19 or 1e-19 long): in double.
+    const double ld = std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+    if (!(ld > 0.0) || !std::isfinite(ld)) return Vec3{};
+    return {float(v.x / ld), float(v.y / ld), float(v.z / ld)};
+}
+
+double distance(const Vec3& a, const Vec3& b) {
+    const double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 }  // namespace
@@ -58,9 +71,11 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
     mesh.vertex_to_particle.resize(raw.positions.size());
     for (std::size_t v = 0; v < raw.positions.size(); ++v) {
         const Vec3& p = raw.positions[v];
-        const CellKey cell{static_cast<std::int64_t>(std::floor((p.x - lo.x) / eps)),
-                           static_cast<std::int64_t>(std::floor((p.y - lo.y) / eps)),
-                           static_cast<std::int64_t>(std::floor((p.z - lo.z) / eps))};
+        // In double: p - lo never overflows there (in float it can, near +-3e38), and the
+        // cell index stays within [0, 1e6].
+        const CellKey cell{static_cast<std::int64_t>(std::floor((double(p.x) - lo.x) / eps)),
+                           static_cast<std::int64_t>(std::floor((double(p.y) - lo.y) / eps)),
+                           static_cast<std::int64_t>(std::floor((double(p.z) - lo.z) / eps))};
         std::int64_t found = -1;
         for (std::int64_t dx = -1; dx <= 1 && found < 0; ++dx) {
             for (std::int64_t dy = -1; dy <= 1 && found < 0; ++dy) {
@@ -68,8 +83,7 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
                     auto it = grid.find({cell.x + dx, cell.y + dy, cell.z + dz});
                     if (it == grid.end()) continue;
                     for (std::uint32_t particle : it->second) {
-                        const Vec3 d = mesh.positions[particle] - p;
-                        if (std::sqrt(double(dot(d, d))) <= eps) {
+                        if (distance(mesh.positions[particle], p) <= eps) {
                             found = particle;
                             break;
                         }
@@ -96,6 +110,11 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
         std::uint32_t particle[3];
         Vec3 normal;  // area-weighted, rest pose
     };
+    // The normal is the cross product of two edges, about diagonal^2 long: in float that
+    // overflows for meshes about 1e19 across and vanishes for ones about 1e-19 across. Outside
+    // everyday sizes the edges are measured in diagonals instead (same directions, same
+    // relative weights).
+    const bool rescale = diagonal > 1e6 || diagonal < 1e-3;
     std::vector<Triangle> triangles;
     triangles.reserve(raw.triangle_corners.size() / 3);
     for (std::size_t t = 0; t + 2 < raw.triangle_corners.size(); t += 3) {
@@ -113,7 +132,17 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
             continue;
         }
         const Vec3& a = mesh.positions[tri.particle[0]];
-        tri.normal = cross(mesh.positions[tri.particle[1]] - a, mesh.positions[tri.particle[2]] - a);
+        const Vec3& b = mesh.positions[tri.particle[1]];
+        const Vec3& c = mesh.positions[tri.particle[2]];
+        if (rescale) {
+            const double ux = (double(b.x) - a.x) / diagonal, uy = (double(b.y) - a.y) / diagonal,
+                         uz = (double(b.z) - a.z) / diagonal;
+            const double vx = (double(c.x) - a.x) / diagonal, vy = (double(c.y) - a.y) / diagonal,
+                         vz = (double(c.z) - a.z) / diagonal;
+            tri.normal = {float(uy * vz - uz * vy), float(uz * vx - ux * vz), float(ux * vy - uy * vx)};
+        } else {
+            tri.normal = cross(b - a, c - a);
+        }
         triangles.push_back(tri);
     }
 

@@ -151,12 +151,6 @@ std::size_t tile_count(std::size_t n) {
 
 std::size_t padded(std::size_t n) { return (n + detail::kPad - 1) / detail::kPad * detail::kPad; }
 
-// Below this many pairs a force pass takes tens of microseconds on one core, and waking another
-// thread costs about as much as it saves (measured at N = 500 and 700 on the project's 2-core machine),
-// so small bodies stay on the calling thread. Either way the same tiles are summed in the same
-// order: the result does not change, only who computes it.
-constexpr std::size_t kMinPairsForThreads = 350000;  // N of about 840
-
 // pool.run, or a plain loop on the calling thread when `threaded` is false.
 void run_tasks(ThreadPool& pool, bool threaded, std::size_t count, const std::function<void(std::size_t)>& task) {
     if (threaded) {
@@ -225,13 +219,15 @@ void PairForceKernel::prepare(std::size_t n) {
             tile_j_.push_back(J);
         }
     }
-    // Whole tiles first, the half-size diagonal ones last: the threads finish closer together.
-    for (std::size_t t = 0; t < tile_i_.size(); ++t) {
-        if (tile_i_[t] != tile_j_[t]) order_.push_back(t);
-    }
-    for (std::size_t t = 0; t < tile_i_.size(); ++t) {
-        if (tile_i_[t] == tile_j_[t]) order_.push_back(t);
-    }
+    // Largest tiles first (whole before diagonal halves before the ragged last block), so the
+    // threads finish close together. The order changes who computes a tile, never the sums.
+    auto pairs_in = [&](std::size_t t) {
+        const std::size_t rows = std::min(B, n - tile_i_[t] * B), cols = std::min(B, n - tile_j_[t] * B);
+        return tile_i_[t] == tile_j_[t] ? rows * (rows - 1) / 2 : rows * cols;
+    };
+    order_.resize(tile_i_.size());
+    for (std::size_t t = 0; t < order_.size(); ++t) order_[t] = t;
+    std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return pairs_in(a) > pairs_in(b); });
     partial_.assign(tile_i_.size() * 6 * B, 0.0f);
     partial_energy_.assign(tile_i_.size(), 0.0);
     stride_ = padded(n);
@@ -258,8 +254,7 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 0.25f * in.c, 0.5f * in.k);  // see pair_tiles.h
     const detail::TileFunction tile = tile_function(variant_);
-    const bool threaded = in.n * (in.n - 1) / 2 >= kMinPairsForThreads;
-    run_tasks(pool_, threaded, order_.size(), [&](std::size_t k) {
+    pool_.run(order_.size(), [&](std::size_t k) {
         const std::size_t t = order_[k];
         float* out = partial_.data() + t * 6 * B;
         std::fill(out, out + 6 * B, 0.0f);
@@ -283,7 +278,8 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
             }
         }
     };
-    run_tasks(pool_, threaded && blocks_ >= 8, blocks_, reduce);
+    // Small bodies reduce on the calling thread: waking another one would cost more than the sums.
+    run_tasks(pool_, blocks_ >= 8, blocks_, reduce);
 }
 
 double PairForceKernel::elastic_energy(const PairInput& in) {
@@ -291,7 +287,7 @@ double PairForceKernel::elastic_energy(const PairInput& in) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 1.0f, 1.0f);
     const detail::StretchTileFunction tile = stretch_tile_function(variant_);
-    run_tasks(pool_, in.n * (in.n - 1) / 2 >= kMinPairsForThreads, tile_i_.size(), [&](std::size_t t) {
+    pool_.run(tile_i_.size(), [&](std::size_t t) {
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);
         const std::size_t j0 = J * B, j1 = std::min(j0 + B, in.n);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "message_text.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -80,8 +81,7 @@ std::string format_number(double x) {
 }
 
 [[noreturn]] void bad_value(std::string_view key, std::string_view what, std::string_view text) {
-    throw InputError("parameter '" + std::string(key) + "': " + std::string(what) + ", got '" +
-                     std::string(text) + "'");
+    throw InputError("parameter '" + std::string(key) + "': " + std::string(what) + ", got '" + printable(text) + "'");
 }
 
 std::string_view trim(std::string_view s) {
@@ -164,6 +164,10 @@ std::string_view closest_key(std::string_view key) {
     std::size_t best_distance = key.size() / 3 + 1;
     for (const auto& info : kTable) {
         const std::string_view other = info.key;
+        // The distance is at least the difference in length: no need to compute it then
+        // (which also keeps a megabyte-long key from costing seconds).
+        const std::size_t longer = std::max(key.size(), other.size()), shorter = std::min(key.size(), other.size());
+        if (longer - shorter >= best_distance) continue;
         std::vector<std::size_t> row(other.size() + 1);
         for (std::size_t j = 0; j <= other.size(); ++j) row[j] = j;
         for (std::size_t i = 1; i <= key.size(); ++i) {
@@ -200,7 +204,7 @@ void validate(const Params& params) {
 void set_param(Params& params, std::string_view key, std::string_view text) {
     const ParamInfo* info = find_param(key);
     if (!info) {
-        std::string message = "unknown parameter '" + std::string(key) + "'";
+        std::string message = "unknown parameter '" + printable(key) + "'";
         if (auto hint = closest_key(key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
         throw InputError(message);
     }
@@ -283,7 +287,7 @@ std::string param_text(const Params& params, std::string_view key) {
         }
         return out;
     }
-    throw InputError("unknown parameter '" + std::string(key) + "'");
+    throw InputError("unknown parameter '" + printable(key) + "'");
 }
 
 }  // namespace softbody

@@ -8,11 +8,12 @@
 #include <cstring>
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "message_text.h"
 #include "physics/error.h"
+#include "text_file.h"
 
 namespace softbody {
 
@@ -60,7 +61,7 @@ std::string value_text(const ParamInfo& info, const json& value) {
             return number(value);
         case ParamType::Int:
             if (!value.is_number_integer()) return fail("a whole number");
-            return std::to_string(value.get<long long>());
+            return value.dump();  // exact, even beyond the range of long long (set_param refuses it)
         case ParamType::Bool:
             if (!value.is_boolean()) return fail("true or false");
             return value.get<bool>() ? "true" : "false";
@@ -80,7 +81,7 @@ std::string value_text(const ParamInfo& info, const json& value) {
             for (const auto& item : value) {
                 if (!item.is_number_integer()) return fail("an array of vertex indices (whole numbers)");
                 if (!out.empty()) out += ',';
-                out += std::to_string(item.get<long long>());
+                out += item.dump();
             }
             return out;
         }
@@ -137,7 +138,7 @@ Params parse_scene(const std::string& text, const std::string& origin, const Par
     for (const auto& [key, value] : root.items()) {
         const ParamInfo* info = find_param(key);
         if (!info) {
-            std::string message = where(origin, text, key) + ": unknown key '" + key + "'";
+            std::string message = where(origin, text, key) + ": unknown key '" + printable(key) + "'";
             if (auto hint = closest_key(key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
             throw InputError(message);
         }
@@ -155,18 +156,7 @@ Params parse_scene(const std::string& text, const std::string& origin, const Par
 }
 
 Params load_scene(const std::string& path, const Params& base) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(path + ": is a folder, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) io_error(path, "cannot open scene file");
-    std::string text;
-    char buffer[65536];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-        text.append(buffer, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > kMaxSceneBytes) break;
-    }
-    if (in.bad()) io_error(path, "cannot read scene file");
-    return parse_scene(text, path, base);
+    return parse_scene(read_text_file(path, kMaxSceneBytes, "scene file"), path, base);
 }
 
 std::string scene_to_json(const Params& params) {
@@ -176,7 +166,13 @@ std::string scene_to_json(const Params& params) {
         root[std::string(info.key)] = value_json(params, info);
     }
     // nlohmann's objects keep keys sorted, which keeps saved files stable and diffable.
-    return root.dump(2) + "\n";
+    try {
+        return root.dump(2) + "\n";
+    } catch (const json::type_error&) {
+        // JSON text is UTF-8; a path in another encoding cannot be written into it faithfully.
+        throw InputError("parameter 'mesh': the path '" + printable(params.mesh) +
+                         "' is not valid UTF-8, which a scene file cannot hold; rename the mesh file");
+    }
 }
 
 void save_scene(const std::string& path, const Params& params, Overwrite overwrite) {
@@ -185,7 +181,7 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
     if (folder.empty()) folder = ".";
     std::error_code ec;
     if (fs::is_directory(target, ec)) throw InputError(path + ": is a folder; choose a file name");
-    if (overwrite == Overwrite::No && fs::exists(target, ec)) {
+    if (overwrite == Overwrite::No && fs::exists(fs::symlink_status(target, ec))) {
         throw InputError(path + ": already exists; not overwriting it");
     }
 
@@ -196,12 +192,18 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
         const fs::path relative = fs::proximate(mesh, fs::absolute(folder, ec), ec);
         if (!ec && !relative.empty()) saved.mesh = relative.string();
     }
-    const std::string text = scene_to_json(saved);
+    const std::string text = scene_to_json(saved);  // before anything touches the disk
 
+    // A replaced file keeps its permissions; a new one is readable by all, writable by its owner.
+    mode_t mode = 0644;
+    if (struct stat old {}; ::stat(path.c_str(), &old) == 0 && S_ISREG(old.st_mode)) mode = old.st_mode & 07777;
+
+    // The temporary file sits beside the target (a rename cannot cross file systems), hidden,
+    // named after it (cut short, so that a long name still leaves room for the suffix).
     std::string temp_name(".");
-    temp_name.append(target.filename().string()).append(".XXXXXX");
+    temp_name.append(target.filename().string().substr(0, 200)).append(".XXXXXX");
     std::string temp = (folder / temp_name).string();
-    const int fd = mkstemp(temp.data());
+    const int fd = ::mkstemp(temp.data());
     if (fd < 0) io_error(path, "cannot create a temporary file beside it");
     auto fail = [&](const char* what) {
         const int saved_errno = errno;
@@ -210,6 +212,7 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
         errno = saved_errno;
         io_error(path, what);
     };
+    // A short write (a full disk, a file size limit) ends in an error, never in a shorter file.
     std::size_t written = 0;
     while (written < text.size()) {
         const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
@@ -219,10 +222,12 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
         }
         written += static_cast<std::size_t>(n);
     }
+    if (::fchmod(fd, mode) != 0) fail("cannot set permissions");
     if (::fsync(fd) != 0) fail("cannot flush to disk");
-    if (::fchmod(fd, 0644) != 0) fail("cannot set permissions");
     if (::close(fd) != 0) {
+        const int saved_errno = errno;
         ::unlink(temp.c_str());
+        errno = saved_errno;
         io_error(path, "cannot close");
     }
     if (overwrite == Overwrite::No) {
@@ -240,6 +245,11 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
         ::unlink(temp.c_str());
         errno = saved_errno;
         io_error(path, "cannot save");
+    }
+    // Make the new name itself durable (best effort: the file is in place either way).
+    if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
+        ::fsync(dir);
+        ::close(dir);
     }
 }
 

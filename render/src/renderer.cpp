@@ -74,6 +74,7 @@ struct Renderer::State {
     // The body: streamed vertices, fixed indices.
     gl::VertexArray body_vao;
     gl::Buffer body_vbo, body_ebo;
+    gl::Buffer body_material;  // fixed: each vertex's place in the body at rest (see body.frag.glsl)
     const Mesh* uploaded_mesh = nullptr;
     std::size_t uploaded_render_vertices = 0, uploaded_indices = 0;
     bool closed_mesh = false;  // every edge shared by two triangles: back faces can be culled
@@ -159,6 +160,10 @@ void Renderer::State::build_buffers() {
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, position)));
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, normal)));
+    body_material = gl::make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, body_material.id());
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, body_ebo.id());
 
     line_vao = gl::make_vertex_array();
@@ -254,6 +259,22 @@ void Renderer::State::upload_topology(const Mesh& mesh) {
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.triangles.size() * sizeof(std::uint32_t)),
                  mesh.triangles.data(), GL_STATIC_DRAW);
     glBindVertexArray(0);
+    // Material coordinates: the mesh's own vertex positions about their centre, in units of the
+    // mesh's radius. They move with the body, so a pattern drawn from them shows it roll.
+    glm::dvec3 centre(0.0);
+    for (const Vec3& p : mesh.positions) centre += glm::dvec3(p.x, p.y, p.z);
+    centre /= double(std::max<std::size_t>(mesh.positions.size(), 1));
+    double radius = 1e-9;
+    for (const Vec3& p : mesh.positions) radius = std::max(radius, glm::length(glm::dvec3(p.x, p.y, p.z) - centre));
+    std::vector<glm::vec3> material(mesh.render_vertices.size());
+    for (std::size_t i = 0; i < material.size(); ++i) {
+        const Vec3& p = mesh.positions[mesh.render_vertices[i].particle];
+        material[i] = glm::vec3((glm::dvec3(p.x, p.y, p.z) - centre) / radius);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, body_material.id());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(material.size() * sizeof(glm::vec3)), material.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
     // Closed: every edge (on particles) belongs to exactly two triangles.
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
     for (std::size_t k = 0; k + 2 < mesh.triangles.size(); k += 3) {
@@ -427,6 +448,7 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         s.body.use();
         set(s.body.uniform("u_view_projection"), view_projection);
         set(s.body.uniform("u_body_color"), look.body_color);
+        set(s.body.uniform("u_pattern"), look.pattern ? 1.0f : 0.0f);
         set(s.body.uniform("u_opacity"), opacity);
         set(s.body.uniform("u_two_sided"), look.body == BodyStyle::Ghost ? 1.0f : 0.0f);
         set(s.body.uniform("u_ground_height"), look.ground ? look.ground_height : -1e30f);

@@ -38,7 +38,7 @@ void expect_matches_reference(const PairState& s, const std::string& what) {
 // Sizes around every edge of the tiling: 1 to 3 particles, either side of the 8- and 16-wide
 // SIMD vectors and of the 256-particle blocks, and a few blocks with a ragged last one.
 TEST(PairKernel, MatchesReferenceOnRandomClouds) {
-    for (std::size_t n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 100, 255, 256, 257, 300, 511, 513, 1000, 1337, 2600}) {
+    for (std::size_t n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 100, 255, 256, 257, 300, 511, 512, 513, 1000, 1025, 1337, 2600}) {
         expect_matches_reference(deformed(random_ball(n, 7u + n), 100u + n), "random cloud");
     }
 }
@@ -117,7 +117,6 @@ TEST(PairKernel, CoincidentParticlesGiveNoForceAndNoNaN) {
 }
 
 TEST(PairKernel, BitIdenticalAcrossRunsAndThreadCounts) {
-    // 1100 and 2000 particles are past the size where the kernel starts using other threads.
     for (std::size_t n : {3, 257, 1100, 2000}) {
         const PairState s = deformed(random_ball(n, 31u), 32u);
         for (PairKernelVariant variant : variants_here()) {

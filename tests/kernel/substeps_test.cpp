@@ -68,7 +68,7 @@ TEST(AutoSubsteps, KeepTwoThousandParticlesStableWhereOneStepDiverges) {
 TEST(AutoSubsteps, WorldIsBitIdenticalAtOneAndTwoThreads) {
     Params params;
     params.auto_substeps = true;
-    const Mesh mesh = cloud(1100);  // enough pairs that the kernel does use the second thread
+    const Mesh mesh = cloud(1100);  // five blocks: fifteen tiles, shared out between the threads
     World one(params, mesh, WorldOptions{1, false});
     World two(params, mesh, WorldOptions{2, false});
     for (int t = 0; t < 60; ++t) {  // 1.2 s: it falls, hits the ground and bounces

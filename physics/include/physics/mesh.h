@@ -14,6 +14,9 @@ namespace softbody {
 
 // All pairs cost N(N-1)/2 springs a force evaluation; beyond this it cannot run usefully.
 inline constexpr std::size_t kMaxParticles = 20000;
+// Triangles a file may hold (after splitting its polygons): fifty times what a closed mesh on
+// kMaxParticles vertices has, and a bound on the memory a hostile file can ask for.
+inline constexpr std::size_t kMaxTriangles = 1'000'000;
 
 // A face corner as written in the file: indices into the file's positions, normals and
 // texture coordinates (-1 where the file gives none).
@@ -53,12 +56,17 @@ struct Mesh {
     std::size_t triangle_count() const { return triangles.size() / 3; }
 };
 
-// Loads an OBJ (through tinyobjloader) or an OFF file, chosen by the extension, and welds it.
-// Throws InputError with the file (and line) for a missing, unreadable or malformed file, or
-// for a mesh without usable vertices or with more than kMaxParticles particles.
+// Loads an OBJ (read by tinyobjloader) or an OFF file, chosen by the extension, and welds it.
+// Throws InputError with the file (and line) for a missing, unreadable, non-regular (a folder,
+// a pipe, a device) or malformed file, or for a mesh without usable vertices, with more than
+// kMaxParticles particles or more than kMaxTriangles triangles.
 Mesh load_mesh(const std::string& path);
 
-// The parsers on their own (used by load_mesh, the tests and the fuzzers).
+// The parsers on their own (used by load_mesh, the tests and the fuzzers). Polygons are split
+// into triangles in time linear in their corners: a quad along its shorter diagonal, a larger
+// polygon as a fan from its first corner (exact for the convex polygons exporters write; a
+// concave one's fan overlaps itself, which only the rendering shows: particles and springs
+// come from the vertices alone).
 RawMesh parse_obj_text(const std::string& text, const std::string& origin);
 RawMesh parse_off_text(const std::string& text, const std::string& origin);
 

@@ -43,18 +43,19 @@ struct Overlays {
     bool springs = false;         // springs coloured by strain (a sample when there are many)
     bool pins = true;             // pinned particles marked
     bool center_of_mass = false;  // marker, with a line down to the ground
-    bool velocities = false;      // one arrow per particle (a sample when there are many)
+    bool velocities = false;      // the centre of mass's velocity, and a sample of the particles'
 };
 
 struct Appearance {
     glm::vec3 body_color{0.93f, 0.45f, 0.24f};  // sRGB, 0..1
     BodyStyle body = BodyStyle::Solid;
+    bool pattern = true;              // soft checks fixed in the body's material: rolling shows
     bool ground = true;
     float ground_height = 0.0f;       // m: the plane z = ground_height
     bool shadows = true;
     int samples = 4;                  // multisample anti-aliasing; 1 turns it off
-    std::size_t max_springs = 48;     // more pairs than this: surface springs plus this many others
-    std::size_t max_arrows = 40;
+    std::size_t max_springs = 48;     // over twice this many pairs: surface springs + this many more
+    std::size_t max_arrows = 40;      // particles' velocity arrows (every k-th particle beyond)
     float velocity_scale = 0.2f;      // arrow length per speed, m per (m/s)
 };
 

@@ -1,0 +1,177 @@
+#include "fuzz_inputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "physics/error.h"
+#include "physics/mesh.h"
+#include "physics/params.h"
+#include "physics/scene_io.h"
+
+namespace softbody::fuzz {
+
+namespace {
+
+void expect(bool ok, const std::string& what) {
+    if (!ok) throw InvariantBroken(what);
+}
+
+double distance(const Vec3& a, const Vec3& b) {
+    const double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+void check_raw(const RawMesh& raw) {
+    expect(raw.triangle_corners.size() % 3 == 0, "triangle corners come in threes");
+    expect(raw.triangle_corners.size() / 3 <= kMaxTriangles, "at most kMaxTriangles triangles");
+    for (const Vec3& p : raw.positions) expect(is_finite(p), "every position is finite");
+    for (const Vec3& n : raw.normals) expect(is_finite(n), "every normal is finite");
+    for (const Corner& c : raw.triangle_corners) {
+        expect(c.position >= 0 && static_cast<std::size_t>(c.position) < raw.positions.size(),
+               "every corner's position index is in range");
+        expect(c.normal >= -1 && (c.normal < 0 || static_cast<std::size_t>(c.normal) < raw.normals.size()),
+               "every corner's normal index is in range or -1");
+        expect(c.uv >= -1 && (c.uv < 0 || static_cast<std::size_t>(c.uv) < raw.uvs.size()),
+               "every corner's uv index is in range or -1");
+    }
+}
+
+// What mesh.h promises of build_mesh: one particle per distinct position (within 1e-6 of the
+// bounding-box diagonal), in first-seen order; triangles on three distinct particles.
+void check_mesh(const RawMesh& raw, const Mesh& mesh) {
+    const std::size_t n = mesh.particle_count();
+    expect(n >= 1 && n <= kMaxParticles, "1 to kMaxParticles particles");
+    expect(mesh.vertex_to_particle.size() == raw.positions.size(), "a particle for every file vertex");
+
+    Vec3 lo = raw.positions[0], hi = raw.positions[0];
+    for (const Vec3& p : raw.positions) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const double diagonal = distance(hi, lo);
+    const double eps = diagonal > 0.0 ? 1e-6 * diagonal : 1.0;
+    std::size_t next = 0;  // particles are numbered in the order their first vertex appears
+    for (std::size_t v = 0; v < raw.positions.size(); ++v) {
+        const std::uint32_t p = mesh.vertex_to_particle[v];
+        expect(p < n, "vertex_to_particle is in range");
+        expect(p <= next, "particles are numbered in first-seen order");
+        if (p == next) ++next;
+        expect(distance(mesh.positions[p], raw.positions[v]) <= eps, "a vertex welds only to a particle within 1e-6 of the diagonal");
+    }
+    expect(next == n, "every particle has a vertex");
+    if (n <= 400) {
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t j = i + 1; j < n; ++j) {
+                expect(distance(mesh.positions[i], mesh.positions[j]) > eps,
+                       "coincident vertices never become two particles");
+            }
+        }
+    }
+
+    expect(mesh.triangles.size() % 3 == 0, "triangles come in threes");
+    expect(mesh.triangle_count() <= raw.triangle_corners.size() / 3, "welding never adds triangles");
+    for (const RenderVertex& r : mesh.render_vertices) {
+        expect(r.particle < n, "a render vertex's particle is in range");
+        expect(r.normal_slot < mesh.normal_slot_count, "a render vertex's normal slot is in range");
+        expect(std::isfinite(r.uv[0]) && std::isfinite(r.uv[1]), "texture coordinates are finite");
+    }
+    for (std::size_t t = 0; t < mesh.triangles.size(); t += 3) {
+        std::uint32_t particle[3];
+        for (std::size_t c = 0; c < 3; ++c) {
+            const std::uint32_t r = mesh.triangles[t + c];
+            expect(r < mesh.render_vertices.size(), "a triangle's render vertex is in range");
+            particle[c] = mesh.render_vertices[r].particle;
+        }
+        expect(particle[0] != particle[1] && particle[1] != particle[2] && particle[0] != particle[2],
+               "a triangle spans three distinct particles");
+    }
+}
+
+// Saves the parameters as a scene file's text and reads it back.
+void expect_scene_round_trip(const Params& params) {
+    std::string saved;
+    try {
+        saved = scene_to_json(params);
+    } catch (const InputError&) {
+        return;  // a mesh path that is not UTF-8: refused by name, nothing written
+    }
+    Params back;
+    try {
+        back = parse_scene(saved, "fuzz.json");
+    } catch (const InputError& e) {
+        throw InvariantBroken(std::string("a saved scene loads back: ") + e.what());
+    }
+    expect(back == params, "a saved scene loads back the same parameters");
+}
+
+}  // namespace
+
+void mesh_input(std::string_view data) {
+    const std::string text(data);
+    for (const bool off : {false, true}) {
+        RawMesh raw;
+        try {
+            raw = off ? parse_off_text(text, "fuzz.off") : parse_obj_text(text, "fuzz.obj");
+        } catch (const InputError&) {
+            continue;
+        }
+        check_raw(raw);
+        try {
+            const Mesh mesh = build_mesh(raw, "fuzz");
+            check_mesh(raw, mesh);
+        } catch (const InputError&) {
+        }
+    }
+}
+
+void scene_input(std::string_view data) {
+    Params params;
+    try {
+        params = parse_scene(std::string(data), "fuzz.json");
+    } catch (const InputError&) {
+        return;
+    }
+    try {
+        validate(params);
+    } catch (const InputError& e) {
+        throw InvariantBroken(std::string("a scene that loads is valid: ") + e.what());
+    }
+    expect_scene_round_trip(params);
+}
+
+void set_input(std::string_view data) {
+    Params params;
+    for (std::size_t start = 0; start <= data.size();) {
+        const std::size_t end = std::min(data.find('\n', start), data.size());
+        const std::string_view line = data.substr(start, end - start);
+        start = end + 1;
+        const std::size_t eq = line.find('=');
+        const std::string_view key = line.substr(0, eq);
+        const std::string_view value = eq == std::string_view::npos ? std::string_view{} : line.substr(eq + 1);
+
+        const Params before = params;
+        try {
+            set_param(params, key, value);
+        } catch (const InputError&) {
+            expect(params == before, "a refused --set changes nothing");
+            continue;
+        }
+        try {
+            validate(params);
+        } catch (const InputError& e) {
+            throw InvariantBroken(std::string("an accepted --set leaves valid parameters: ") + e.what());
+        }
+        const std::string text = param_text(params, key);
+        Params again = params;
+        try {
+            set_param(again, key, text);
+        } catch (const InputError& e) {
+            throw InvariantBroken(std::string("param_text gives text that set_param accepts: ") + e.what());
+        }
+        expect(again == params, "set_param(param_text(...)) gives back the same value");
+    }
+    expect_scene_round_trip(params);
+}
+
+}  // namespace softbody::fuzz
