@@ -177,6 +177,11 @@ render::Frame Demo::make_frame() const {
     frame.camera = camera;
     frame.overlays = overlays;
     frame.appearance = appearance;
+    if (const auto& grab = w.grab()) {
+        frame.overlays.grab = true;
+        frame.overlays.grab_particle = grab->particle;
+        frame.overlays.grab_target = to_glm(grab->target);
+    }
     return frame;
 }
 

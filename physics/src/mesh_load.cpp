@@ -160,7 +160,7 @@ void check_obj(const std::string& text, const std::string& origin) {
                     if (index_text.empty() && part > 0) continue;  // "1//3": no texture coordinate
                     const long long available = counts[part == 0 ? 0 : part == 1 ? 1 : 2];
                     long long index = 0;
-                    if (!to_long(index_text, index) || index == 0 || index > available || -index > available) {
+                    if (!to_long(index_text, index) || index == 0 || index > available || index < -available) {
                         static const char* names[] = {"vertex", "texture coordinate", "normal"};
                         malformed(origin, line, "face " + std::string(names[part]) + " index " + quoted(index_text) +
                                                     " does not refer to one of the " + std::to_string(available) +

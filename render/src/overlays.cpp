@@ -18,6 +18,7 @@ constexpr glm::vec4 kSpringCompressed{0.08f, 0.38f, 1.00f, 1.0f};
 constexpr glm::vec4 kVelocityColor{0.10f, 0.78f, 0.52f, 0.9f};
 constexpr glm::vec4 kComVelocityColor{0.02f, 0.50f, 0.30f, 1.0f};
 constexpr glm::vec4 kComColor{1.00f, 0.80f, 0.10f, 1.0f};
+constexpr glm::vec4 kGrabColor{0.20f, 0.75f, 1.00f, 1.0f};  // the mouse's pull
 constexpr glm::vec4 kComLine{0.12f, 0.12f, 0.14f, 0.75f};
 constexpr float kStrainForFullColor = 0.15f;  // |l / l0 - 1| that gets the full colour
 
@@ -186,6 +187,13 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, con
         for (std::size_t i = 0; i < n; i += stride) arrow(x[i], body.velocities[i], kVelocityColor, 1.6f, out.lines);
         // ...and the centre of mass's, bold and always in view.
         arrow(shape.centre_of_mass, glm::vec3(mean / double(n)), kComVelocityColor, 3.5f, out.lines_on_top);
+    }
+
+    if (on.grab && on.grab_particle < n) {
+        const glm::vec3 from = x[on.grab_particle];
+        out.lines_on_top.push_back({from, on.grab_target, kGrabColor, 2.5f});
+        out.spheres_on_top.push_back({from, 1.6f * particle_radius, kGrabColor});
+        out.spheres_on_top.push_back({on.grab_target, 1.0f * particle_radius, kGrabColor});
     }
 
     if (on.center_of_mass) {

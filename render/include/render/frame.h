@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include <glm/glm.hpp>
@@ -44,6 +45,10 @@ struct Overlays {
     bool pins = true;             // pinned particles marked
     bool center_of_mass = false;  // marker, with a line down to the ground
     bool velocities = false;      // the centre of mass's velocity, and a sample of the particles'
+    // The mouse's pull: a line from the grabbed particle to the point it is pulled toward.
+    bool grab = false;
+    std::uint32_t grab_particle = 0;
+    glm::vec3 grab_target{0.0f};
 };
 
 struct Appearance {
