@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The two commands of README.md, each complete on its own on a fresh Debian 12 machine:
 #   ./dev.sh demo   install what is missing, build, open the interactive demo
-#   ./dev.sh test   install what is missing, build, run every test
+#   ./dev.sh test   install what is missing, build, run every test; then the unit, kernel and CLI
+#                   tests again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/),
+#                   and a few seconds of each fuzz target (clang, build-fuzz/)
 #   ./dev.sh soak   install, build, run the demo for 20,000 scripted frames (virtual display)
 # Everything comes from Debian's packages; nothing is downloaded from anywhere else.
 set -euo pipefail
@@ -13,12 +15,14 @@ PACKAGES=(
   nlohmann-json3-dev libgtest-dev libbenchmark-dev zlib1g-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
+# Only `test` needs these: clang and its runtimes for the fuzz targets (libFuzzer).
+TEST_PACKAGES=(clang libclang-rt-14-dev)
 BUILD_DIR=${BUILD_DIR:-build}
 JOBS=$(nproc 2>/dev/null || echo 2)
 
 install_missing() {
   local missing=() package
-  for package in "${PACKAGES[@]}"; do
+  for package in "${PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q 'install ok installed' || missing+=("$package")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -34,6 +38,44 @@ build() {
   cmake --build "$BUILD_DIR" -j"$JOBS"
 }
 
+# The unit, kernel, CLI and fuzz-regression tests again under AddressSanitizer and
+# UndefinedBehaviorSanitizer (CMakePresets.json, preset asan: build-asan/, no renderer or
+# window, only the targets these tests need). Any report fails the test that made it.
+sanitizer_tests() {
+  local start=$SECONDS
+  cmake --preset asan >/dev/null
+  cmake --build --preset asan -j"$JOBS"
+  ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    ctest --preset asan -j"$JOBS"
+  echo "dev.sh: sanitizer build and tests took $(( SECONDS - start )) s"
+}
+
+# Each fuzz target for FUZZ_SECONDS (default 10) from its seeds and every input that once broke
+# it, copied to a temporary folder (the fuzzer adds what it finds there, never in tests/). A
+# crash, a sanitizer's report, a broken invariant or a slow input fails, and its input is kept.
+fuzz_smoke() {
+  local start=$SECONDS seconds=${FUZZ_SECONDS:-10} work target
+  cmake --preset fuzz >/dev/null
+  cmake --build --preset fuzz -j"$JOBS"
+  work=$(mktemp -d "${TMPDIR:-/tmp}/softbody-fuzz.XXXXXX")
+  for target in fuzz_mesh fuzz_scene fuzz_set; do
+    mkdir -p "$work/$target"
+    cp tests/fuzz/corpus/"$target"/* "$work/$target/"
+    if [ -d tests/fuzz/regressions/"$target" ]; then
+      find tests/fuzz/regressions/"$target" -type f -exec cp {} "$work/$target/" \;
+    fi
+    if ! build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+         -dict=tests/fuzz/dict/"$target".dict -artifact_prefix="$work/" "$work/$target" >"$work/$target.log" 2>&1; then
+      tail -n 60 "$work/$target.log" >&2
+      echo "dev.sh: $target failed; its log and the input that failed are in $work" >&2
+      exit 1
+    fi
+    echo "dev.sh: $target: $(grep -o 'Done [0-9]* runs in [0-9]* second(s)' "$work/$target.log")"
+  done
+  rm -rf "$work"
+  echo "dev.sh: fuzz build and runs took $(( SECONDS - start )) s"
+}
+
 case "${1:-}" in
   demo)
     install_missing
@@ -47,9 +89,11 @@ case "${1:-}" in
     exec "$BUILD_DIR/app/softbody" "$@"
     ;;
   test)
-    install_missing
+    install_missing "${TEST_PACKAGES[@]}"
     build
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$JOBS"
+    sanitizer_tests
+    fuzz_smoke
     ;;
   soak)
     # Everything a user does, for 20,000 frames, in one process; memory is reported at frame
@@ -65,7 +109,7 @@ case "${1:-}" in
     ;;
   *)
     echo "usage: ./dev.sh demo   (install, build, open the demo)" >&2
-    echo "       ./dev.sh test   (install, build, run every test)" >&2
+    echo "       ./dev.sh test   (install, build, run every test, then under the sanitizers, then the fuzzers)" >&2
     echo "       ./dev.sh soak   (install, build, 20,000 scripted frames of the demo)" >&2
     exit 2
     ;;

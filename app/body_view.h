@@ -17,6 +17,7 @@ inline render::BodyView body_view(const World& world, float alpha = 1.0f) {
     view.previous_positions = span_of(world.previous_tick_positions());
     view.alpha = alpha;
     view.velocities = span_of(world.velocities());
+    if (world.forces().size() == world.particle_count()) view.forces = span_of(world.forces());
     view.rest_positions = span_of(world.rest_positions());
     view.inverse_masses = {world.inverse_masses().data(), world.inverse_masses().size()};
     return view;

@@ -42,8 +42,8 @@ constexpr const char* kUsage =
     "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
     "              target=X:Y:Z, follow (frame the body in every image; default: frame the\n"
     "              start of the fall once, so every image shares one camera)\n"
-    "  --overlay   particles, springs, pins, com, velocity, or none (default: pins)\n"
-    "  --body      solid, ghost (see-through) or hidden (default: solid)\n"
+    "  --overlay   particles, springs, pins, com, velocity, forces, normals, or none (default: pins)\n"
+    "  --body      solid, ghost (see-through), wireframe or hidden (default: solid)\n"
     "  --no-pattern  a plain body, without the soft checks that show it turn\n"
     "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
     "  --debug-offset DX,DY,DZ and --debug-flip-normals draw deliberate faults (the screenshot\n"
@@ -111,10 +111,12 @@ void parse_overlays(std::string_view text, render::Overlays& on) {
         else if (name == "pins") on.pins = true;
         else if (name == "com") on.center_of_mass = true;
         else if (name == "velocity" || name == "velocities") on.velocities = true;
+        else if (name == "forces") on.forces = true;
+        else if (name == "normals") on.normals = true;
         else if (name == "none") {
         } else {
             throw UsageError("--overlay: unknown overlay '" + std::string(name) +
-                             "' (particles, springs, pins, com, velocity, none)");
+                             "' (particles, springs, pins, com, velocity, forces, normals, none)");
         }
     }
 }
@@ -227,8 +229,9 @@ int render_command(int argc, char** argv) {
             const std::string_view style = args.value(option);
             if (style == "solid") frame.appearance.body = render::BodyStyle::Solid;
             else if (style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
+            else if (style == "wireframe") frame.appearance.body = render::BodyStyle::Wireframe;
             else if (style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
-            else throw UsageError("--body: expected solid, ghost or hidden, got '" + std::string(style) + "'");
+            else throw UsageError("--body: expected solid, ghost, wireframe or hidden, got '" + std::string(style) + "'");
         } else if (option == "--body-color") {
             frame.appearance.body_color = parse_color(args.value(option));
         } else if (option == "--no-ground") {

@@ -342,12 +342,15 @@ void Panels::display(Demo& demo) {
     ImGui::Checkbox("centre of mass (C)", &o.center_of_mass);
     ImGui::Checkbox("velocities (V)", &o.velocities);
     ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("forces", &o.forces);
+    ImGui::Checkbox("normals", &o.normals);
+    ImGui::SameLine(180 * scale_);
     ImGui::Checkbox("shadows", &a.shadows);
     ImGui::Checkbox("ground and grid", &a.ground);
     ImGui::SameLine(180 * scale_);
     ImGui::Checkbox("follow body", &demo.follow);
     int style = static_cast<int>(a.body);
-    if (ImGui::Combo("body", &style, "solid\0ghost (see-through)\0hidden\0")) a.body = static_cast<render::BodyStyle>(style);
+    if (ImGui::Combo("body", &style, "solid\0ghost (see-through)\0wireframe\0hidden\0")) a.body = static_cast<render::BodyStyle>(style);
     ImGui::ColorEdit3("colour", &a.body_color.x, ImGuiColorEditFlags_NoInputs);
     int samples_index = a.samples >= 4 ? 2 : a.samples >= 2 ? 1 : 0;
     if (ImGui::Combo("anti-aliasing", &samples_index, "off\0" "2x\0" "4x\0")) a.samples = samples_index == 0 ? 1 : samples_index == 1 ? 2 : 4;

@@ -64,8 +64,7 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
-    const double diagonal = std::sqrt(double(hi.x - lo.x) * (hi.x - lo.x) + double(hi.y - lo.y) * (hi.y - lo.y) +
-                                      double(hi.z - lo.z) * (hi.z - lo.z));
+    const double diagonal = distance(hi, lo);  // in double: hi - lo overflows float near +-3e38
     const double eps = diagonal > 0.0 ? 1e-6 * diagonal : 1.0;
     std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> grid;
     mesh.vertex_to_particle.resize(raw.positions.size());

@@ -18,6 +18,8 @@ constexpr glm::vec4 kSpringCompressed{0.08f, 0.38f, 1.00f, 1.0f};
 constexpr glm::vec4 kVelocityColor{0.10f, 0.78f, 0.52f, 0.9f};
 constexpr glm::vec4 kComVelocityColor{0.02f, 0.50f, 0.30f, 1.0f};
 constexpr glm::vec4 kComColor{1.00f, 0.80f, 0.10f, 1.0f};
+constexpr glm::vec4 kNormalColor{0.35f, 0.45f, 0.95f, 0.9f};
+constexpr glm::vec4 kForceColor{0.95f, 0.30f, 0.75f, 1.0f};
 constexpr glm::vec4 kGrabColor{0.20f, 0.75f, 1.00f, 1.0f};  // the mouse's pull
 constexpr glm::vec4 kComLine{0.12f, 0.12f, 0.14f, 0.75f};
 constexpr float kStrainForFullColor = 0.15f;  // |l / l0 - 1| that gets the full colour
@@ -106,8 +108,8 @@ std::vector<SpringSample> sample_springs(const Mesh& mesh, std::size_t budget) {
     return springs;
 }
 
-void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, const BodyShape& shape,
-                           OverlayGeometry& out) {
+void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std::span<const SurfaceVertex> surface,
+                           const BodyShape& shape, OverlayGeometry& out) {
     out.lines.clear();
     out.spheres.clear();
     out.lines_on_top.clear();
@@ -187,6 +189,57 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, con
         for (std::size_t i = 0; i < n; i += stride) arrow(x[i], body.velocities[i], kVelocityColor, 1.6f, out.lines);
         // ...and the centre of mass's, bold and always in view.
         arrow(shape.centre_of_mass, glm::vec3(mean / double(n)), kComVelocityColor, 3.5f, out.lines_on_top);
+    }
+
+    if (frame.appearance.body == BodyStyle::Wireframe && body.mesh->triangle_count() > 0) {
+        // Every edge of the surface once, in the body's colour.
+        if (edge_mesh_ != body.mesh || edge_mesh_triangles_ != body.mesh->triangle_count()) {
+            edges_.clear();
+            const auto& rv = body.mesh->render_vertices;
+            const auto& t = body.mesh->triangles;
+            for (std::size_t k = 0; k + 2 < t.size(); k += 3) {
+                for (int e = 0; e < 3; ++e) {
+                    std::uint32_t a = rv[t[k + e]].particle, b = rv[t[k + (e + 1) % 3]].particle;
+                    if (a > b) std::swap(a, b);
+                    edges_.emplace_back(a, b);
+                }
+            }
+            std::sort(edges_.begin(), edges_.end());
+            edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+            edge_mesh_ = body.mesh;
+            edge_mesh_triangles_ = body.mesh->triangle_count();
+        }
+        const glm::vec4 color(frame.appearance.body_color, 1.0f);
+        for (const auto& [a, b] : edges_) {
+            if (a < n && b < n) out.lines.push_back({x[a], x[b], color, 1.4f});
+        }
+    }
+
+    if (on.normals && !surface.empty()) {
+        // A fixed sample of the render vertices, each with its normal: the shading's input.
+        const std::size_t budget = std::max<std::size_t>(1, 4 * frame.appearance.max_arrows);
+        const std::size_t stride = (surface.size() + budget - 1) / budget;
+        const float length = 0.12f * r_body;
+        for (std::size_t i = 0; i < surface.size(); i += stride) {
+            out.lines.push_back({surface[i].position, surface[i].position + surface[i].normal * length, kNormalColor, 1.4f});
+        }
+    }
+
+    if (on.forces && body.forces.size == n) {
+        // Net force per particle, the longest drawn at half the body's rest radius.
+        float largest = 0.0f;
+        for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, glm::length(body.forces[i]));
+        if (largest > 0.0f) {
+            const float scale = 0.5f * r_body / largest;
+            const std::size_t budget = std::max<std::size_t>(1, frame.appearance.max_arrows);
+            const std::size_t stride = (n + budget - 1) / budget;
+            for (std::size_t i = 0; i < n; i += stride) {
+                const glm::vec3 tip = x[i] + body.forces[i] * scale;
+                if (glm::length(tip - x[i]) < 0.02f * r_body) continue;
+                out.lines_on_top.push_back({x[i], tip, kForceColor, 2.0f});
+                out.spheres_on_top.push_back({tip, 0.5f * particle_radius, kForceColor});
+            }
+        }
     }
 
     if (on.grab && on.grab_particle < n) {

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/deform.h"
 #include "render/frame.h"
 
 namespace softbody::render {
@@ -57,13 +58,18 @@ struct OverlayGeometry {
 
 class OverlayBuilder {
 public:
-    void build(const Frame& frame, std::span<const glm::vec3> particles, const BodyShape& shape,
-               OverlayGeometry& out);
+    // `surface`: the streamed vertices (positions and recomputed normals), empty when the body
+    // has no surface this frame.
+    void build(const Frame& frame, std::span<const glm::vec3> particles, std::span<const SurfaceVertex> surface,
+               const BodyShape& shape, OverlayGeometry& out);
 
 private:
     const Mesh* spring_mesh_ = nullptr;
     std::size_t spring_mesh_particles_ = 0, spring_mesh_triangles_ = 0, spring_budget_ = 0;
     std::vector<SpringSample> springs_;
+    const Mesh* edge_mesh_ = nullptr;
+    std::size_t edge_mesh_triangles_ = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges_;  // the surface's edges, for wireframe
 };
 
 }  // namespace softbody::render

@@ -343,7 +343,8 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     const Mesh* mesh = frame.body.mesh;
     interpolate_positions(frame.body, frame.debug.body_offset, s.particles);
     const BodyShape shape = measure_body(s.particles, frame.body.rest_positions);
-    const bool has_surface = mesh && mesh->triangle_count() > 0 && look.body != BodyStyle::Hidden;
+    const bool has_surface = mesh && mesh->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
+                             look.body != BodyStyle::Wireframe;
     if (has_surface) s.surface.update(*mesh, s.particles, frame.debug.flip_normals);
     s.timings.surface_ms = ms_since(start);
 
@@ -356,7 +357,9 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     }
     s.timings.upload_ms = ms_since(upload_start);
     const GLsizei index_count = has_surface ? static_cast<GLsizei>(mesh->triangles.size()) : 0;
-    s.overlay_builder.build(frame, s.particles, shape, s.overlays);
+    s.overlay_builder.build(frame, s.particles,
+                            has_surface ? std::span<const SurfaceVertex>(s.surface.vertices()) : std::span<const SurfaceVertex>(),
+                            shape, s.overlays);
     float largest_sphere = 0.0f;
     for (const SphereInstance& sphere : s.overlays.spheres) largest_sphere = std::max(largest_sphere, sphere.radius);
 

@@ -99,6 +99,8 @@ public:
     const Vec3Array& positions() const { return x_; }
     const Vec3Array& previous_tick_positions() const { return x_tick_prev_; }  // for interpolation
     const Vec3Array& velocities() const { return v_; }
+    // Net force on each particle (N) at the last force evaluation, friction included: for display.
+    const Vec3Array& forces() const { return force_; }
     const Vec3Array& rest_positions() const { return rest_; }
     const FloatArray& inverse_masses() const { return inv_mass_; }
 

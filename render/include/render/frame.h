@@ -32,11 +32,12 @@ struct BodyView {
     Vec3Span previous_positions;   // particles one tick earlier; empty: no interpolation
     float alpha = 1.0f;            // draws lerp(previous_positions, positions, alpha)
     Vec3Span velocities;           // for the velocity arrows
+    Vec3Span forces;               // net force on each particle, N: for the force arrows
     Vec3Span rest_positions;       // for the springs' strain colours
     std::span<const float> inverse_masses;  // 0 marks a pinned particle
 };
 
-enum class BodyStyle { Solid, Ghost, Hidden };
+enum class BodyStyle { Solid, Ghost, Wireframe, Hidden };
 
 // Each overlay on its own switch.
 struct Overlays {
@@ -45,6 +46,8 @@ struct Overlays {
     bool pins = true;             // pinned particles marked
     bool center_of_mass = false;  // marker, with a line down to the ground
     bool velocities = false;      // the centre of mass's velocity, and a sample of the particles'
+    bool forces = false;          // a sample of the particles' net forces, scaled to the body
+    bool normals = false;         // a sample of the recomputed surface normals
     // The mouse's pull: a line from the grabbed particle to the point it is pulled toward.
     bool grab = false;
     std::uint32_t grab_particle = 0;
