@@ -102,6 +102,18 @@ bool to_float(std::string_view token, float& out) {
     return std::isfinite(out);
 }
 
+// The OBJ reader's own number parser counts a number's exponent in an int without a bound:
+// "0e2147483648" (zero, and valid) overflows it. A float's exponent needs three digits; more
+// than six significant ones only ever write zero or a number out of range.
+bool exponent_fits_reader(std::string_view token) {
+    const auto e = token.find_first_of("eE");
+    if (e == std::string_view::npos) return true;
+    std::string_view exponent = token.substr(e + 1);
+    if (!exponent.empty() && (exponent.front() == '+' || exponent.front() == '-')) exponent.remove_prefix(1);
+    while (!exponent.empty() && exponent.front() == '0') exponent.remove_prefix(1);
+    return exponent.size() <= 6;
+}
+
 bool to_long(std::string_view token, long long& out) {
     token = without_plus(token);
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), out);
@@ -132,6 +144,9 @@ void check_obj(const std::string& text, const std::string& origin) {
                 float value = 0.0f;
                 if (!to_float(tokens[t], value)) {
                     malformed(origin, line, "coordinate " + quoted(tokens[t]) + " is not a finite number");
+                }
+                if (!exponent_fits_reader(tokens[t])) {
+                    malformed(origin, line, "coordinate " + quoted(tokens[t]) + " has an exponent out of range");
                 }
             }
             long long& count = counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2];

@@ -59,11 +59,11 @@ double elastic_energy_reference(const PairInput& in) {
 // at a time; the force on i is summed in registers, the equal and opposite force on j goes
 // straight into the tile's buffer. The rest length l0 = |r_j - r_i| is recomputed from the
 // rest positions. Storing one float per pair instead would cost 2 N^2 bytes (200 MB at
-// N = 10,000, 800 MB at N = 20,000, against this kernel's 5 and 20 MB) and buys little: with the
-// AVX-512 tile it measured 10% faster at N = 2,500 (where the table still fits in cache and a
-// tick is already a sixth of real time) and within 3% either way at 5,000 and 10,000, where it
-// streams from memory; with the AVX2 tile, 7 to 16% faster on one thread (BM_RestLength in
-// tests/benchmarks).
+// N = 10,000, 800 MB at N = 20,000, against this kernel's 5 and 20 MB), and measured
+// (BM_RestLength in tests/benchmarks, same tile loop, two threads): with the AVX-512 tile 3%
+// faster at N = 2,500, where the table still fits in cache, but 9% and 7% slower at 5,000
+// and 10,000, where it streams from memory; with the AVX2 tile 6 to 17% faster. The sizes
+// that decide real time here are the large ones, so the kernel recomputes.
 //
 // Accuracy: the SIMD tiles take 1/l from the CPU's approximate reciprocal square root refined
 // by one Newton step (relative error about 4e-7 with AVX2, float rounding with AVX-512), and

@@ -20,8 +20,8 @@ struct PackedParticles;  // the tiles' layout (physics/src/pair_tiles.h)
 
 // Everything the pair loop reads. Rest lengths are not stored: l0 = |r_j - r_i| is recomputed
 // from the rest positions r, which costs O(N) memory instead of N(N-1)/2 floats (200 MB at
-// N = 10,000, 800 MB at 20,000) and costs at most a few percent of speed where it matters
-// (see pair_forces.cpp and BM_RestLength in tests/benchmarks).
+// N = 10,000, 800 MB at 20,000); a stored table measured no faster at the sizes that decide
+// real time (see pair_forces.cpp and BM_RestLength in tests/benchmarks).
 struct PairInput {
     const float *x, *y, *z;     // positions
     const float *vx, *vy, *vz;  // velocities
