@@ -48,6 +48,7 @@ public:
             pos_ = end + 1;
             if (end < text_.size() && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
             ++line_;
+            raw_ = line;
             had_comment_ = false;
             if (comments_ == Comments::Anywhere) {
                 if (const auto hash = line.find('#'); hash != std::string_view::npos) {
@@ -73,6 +74,7 @@ public:
     }
     std::size_t line() const { return line_; }
     bool had_comment() const { return had_comment_; }
+    std::string_view raw_line() const { return raw_; }  // comment included
 
 private:
     static bool is_space(char c) { return c == ' ' || c == '\t'; }
@@ -80,6 +82,7 @@ private:
     Comments comments_;
     std::size_t pos_ = 0;
     std::size_t line_ = 0;
+    std::string_view raw_;
     bool had_comment_ = false;
 };
 
@@ -104,14 +107,22 @@ bool to_float(std::string_view token, float& out) {
 
 // The OBJ reader's own number parser counts a number's exponent in an int without a bound:
 // "0e2147483648" (zero, and valid) overflows it. A float's exponent needs three digits; more
-// than six significant ones only ever write zero or a number out of range.
+// than six significant ones only ever write zero or a number out of range. The reader parses
+// a vertex line's first tokens whatever they are, a comment's words included, so every token
+// on the line that it could take for a number is checked.
 bool exponent_fits_reader(std::string_view token) {
+    if (token.empty() || !(std::isdigit(static_cast<unsigned char>(token.front())) || token.front() == '+' ||
+                           token.front() == '-' || token.front() == '.')) {
+        return true;  // not a number to the reader: it stops at the first character
+    }
     const auto e = token.find_first_of("eE");
     if (e == std::string_view::npos) return true;
     std::string_view exponent = token.substr(e + 1);
     if (!exponent.empty() && (exponent.front() == '+' || exponent.front() == '-')) exponent.remove_prefix(1);
     while (!exponent.empty() && exponent.front() == '0') exponent.remove_prefix(1);
-    return exponent.size() <= 6;
+    std::size_t digits = 0;
+    while (digits < exponent.size() && std::isdigit(static_cast<unsigned char>(exponent[digits]))) ++digits;
+    return digits <= 6;
 }
 
 bool to_long(std::string_view token, long long& out) {
@@ -145,9 +156,14 @@ void check_obj(const std::string& text, const std::string& origin) {
                 if (!to_float(tokens[t], value)) {
                     malformed(origin, line, "coordinate " + quoted(tokens[t]) + " is not a finite number");
                 }
-                if (!exponent_fits_reader(tokens[t])) {
-                    malformed(origin, line, "coordinate " + quoted(tokens[t]) + " has an exponent out of range");
+            }
+            for (std::string_view rest = reader.raw_line(); !rest.empty();) {
+                const std::size_t start = std::min(rest.find_first_not_of(" \t"), rest.size());
+                const std::size_t end = std::min(rest.find_first_of(" \t", start), rest.size());
+                if (const auto token = rest.substr(start, end - start); !exponent_fits_reader(token)) {
+                    malformed(origin, line, "number " + quoted(token) + " has an exponent out of range");
                 }
+                rest.remove_prefix(end);
             }
             long long& count = counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2];
             if (++count > static_cast<long long>(kMaxElements)) {
@@ -158,7 +174,8 @@ void check_obj(const std::string& text, const std::string& origin) {
             const std::size_t minimum = kind == "f" ? 3 : kind == "l" ? 2 : 1;
             if (reader.had_comment()) {
                 // The reader would take the comment's words for indices.
-                malformed(origin, line, "a comment after a face's indices is not supported; put it on a line of its own");
+                malformed(origin, line,
+                          "a comment after a face's indices is not supported; put it on a line of its own");
             }
             if (tokens.size() < minimum + 1) {
                 malformed(origin, line, "'" + std::string(kind) + "' needs at least " + std::to_string(minimum) + " vertices");

@@ -128,7 +128,22 @@ Params parse_scene(const std::string& text, const std::string& origin, const Par
         std::string message = e.what();
         if (const auto at = message.find("; "); at != std::string::npos) message = message.substr(at + 2);
         throw InputError(origin + ":" + std::to_string(line_of_offset(text, e.byte ? e.byte - 1 : 0)) +
-                         ": malformed JSON: " + message);
+                         ": malformed JSON: " + printable(message, 200));
+    } catch (const json::out_of_range& e) {
+        // A number beyond double ("1e400"): reported without a position, so the line is the
+        // one where its text first appears.
+        std::string message = e.what();
+        if (const auto at = message.find("] "); at != std::string::npos) message = message.substr(at + 2);
+        std::string where_it_is = origin;
+        if (const auto open = message.find('\''), close = message.rfind('\'');
+            open != std::string::npos && close > open) {
+            if (const auto at = text.find(message.substr(open + 1, close - open - 1)); at != std::string::npos) {
+                where_it_is += ":" + std::to_string(line_of_offset(text, at));
+            }
+        }
+        throw InputError(where_it_is + ": malformed JSON: " + printable(message, 120));
+    } catch (const json::exception& e) {
+        throw InputError(origin + ": malformed JSON: " + printable(e.what(), 120));
     } catch (const InputError& e) {
         throw InputError(origin + ": " + e.what());
     }

@@ -57,7 +57,8 @@ void check_mesh(const RawMesh& raw, const Mesh& mesh) {
         expect(p < n, "vertex_to_particle is in range");
         expect(p <= next, "particles are numbered in first-seen order");
         if (p == next) ++next;
-        expect(distance(mesh.positions[p], raw.positions[v]) <= eps, "a vertex welds only to a particle within 1e-6 of the diagonal");
+        expect(distance(mesh.positions[p], raw.positions[v]) <= eps,
+               "a vertex welds only to a particle within 1e-6 of the diagonal");
     }
     expect(next == n, "every particle has a vertex");
     if (n <= 400) {

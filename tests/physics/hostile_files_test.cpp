@@ -181,6 +181,17 @@ TEST(HostileFiles, EnormousJsonIsRefusedOrRead) {
     EXPECT_REFUSED_NAMING(parse_scene("{\"a\\nb\": 1}", "nl.json"), "nl.json", "'a?b'");
 }
 
+// Numbers beyond double are malformed JSON, with the line they are on; beyond float, or beyond
+// a whole number's range, they are values out of range for their key.
+TEST(HostileFiles, JsonNumbersOutOfEveryRange) {
+    EXPECT_REFUSED_NAMING(parse_scene("{\n  \"dt\": 0.02,\n  \"stiffness\": 1e400\n}\n", "a.json"), "a.json:3:",
+                          "malformed JSON", "1e400");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"stiffness\": 1e39}", "b.json"), "b.json:1", "'stiffness'");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"substeps\": 18446744073709551615}", "c.json"), "c.json:1", "'substeps'",
+                          "18446744073709551615");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"pinned\": [1, 99999999999999999999]}", "d.json"), "d.json:1", "'pinned'");
+}
+
 // --- A path that is a directory --------------------------------------------------------------
 
 TEST(HostileFiles, FolderInsteadOfAFile) {
@@ -265,7 +276,9 @@ TEST(HostileFiles, AllVerticesCoincident) {
 
 TEST(HostileFiles, SinglePoint) {
     TempDir dir;
-    for (const std::string& path : {dir.write("point.obj", "v 0.25 0.5 1\n"), dir.write("point.off", "OFF\n1 0 0\n0.25 0.5 1\n")}) {
+    const std::string obj = dir.write("point.obj", "v 0.25 0.5 1\n");
+    const std::string off = dir.write("point.off", "OFF\n1 0 0\n0.25 0.5 1\n");
+    for (const std::string& path : {obj, off}) {
         const Mesh mesh = load_mesh(path);
         ASSERT_EQ(mesh.particle_count(), 1u) << path;
         EXPECT_EQ(mesh.positions[0], (Vec3{0.25f, 0.5f, 1.0f}));
