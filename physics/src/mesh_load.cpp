@@ -181,6 +181,10 @@ void check_obj(const std::string& text, const std::string& origin) {
                 malformed(origin, line, "'" + std::string(kind) + "' needs at least " + std::to_string(minimum) + " vertices");
             }
             for (std::size_t t = 1; t < tokens.size(); ++t) {
+                if (tokens[t].back() == '/') {
+                    // The reader would take the next corner's number for the missing index.
+                    malformed(origin, line, "face corner " + quoted(tokens[t]) + " ends with '/'");
+                }
                 std::string_view rest = tokens[t];
                 for (int part = 0; part < 3 && !rest.empty(); ++part) {
                     const auto slash = rest.find('/');

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "physics/error.h"
 #include "physics/mesh.h"
@@ -35,6 +37,77 @@ void check_raw(const RawMesh& raw) {
         expect(c.uv >= -1 && (c.uv < 0 || static_cast<std::size_t>(c.uv) < raw.uvs.size()),
                "every corner's uv index is in range or -1");
     }
+}
+
+// The OBJ file as its own check reads it (lines end at \n, \r\n or \r; tokens split at spaces
+// and tabs; a token that starts with '#' ends the line), which parse_obj_text's result must
+// match: the same vertices, and each face's triangles on that face's own corners (a reader
+// that took one token for another would show here).
+struct ObjView {
+    std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
+    std::vector<std::vector<Corner>> faces;
+};
+
+ObjView view_obj(std::string_view text) {
+    ObjView view;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t end = pos;
+        while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
+        const std::string_view line = text.substr(pos, end - pos);
+        pos = end + 1;
+        if (end < text.size() && text[end] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
+        std::vector<std::string_view> tokens;
+        for (std::size_t i = 0; i < line.size();) {
+            while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+            if (i < line.size() && line[i] == '#') break;
+            const std::size_t start = i;
+            while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+            if (i > start) tokens.push_back(line.substr(start, i - start));
+        }
+        if (tokens.empty()) continue;
+        if (tokens[0] == "v") ++view.counts[0];
+        if (tokens[0] == "vt") ++view.counts[1];
+        if (tokens[0] == "vn") ++view.counts[2];
+        if (tokens[0] != "f") continue;
+        std::vector<Corner> face;
+        for (std::size_t t = 1; t < tokens.size(); ++t) {
+            std::int32_t index[3] = {-1, -1, -1};
+            std::string_view rest = tokens[t];
+            for (int part = 0; part < 3 && !rest.empty(); ++part) {
+                const std::size_t slash = std::min(rest.find('/'), rest.size());
+                const std::string number(rest.substr(0, slash));
+                rest = slash < rest.size() ? rest.substr(slash + 1) : std::string_view{};
+                if (number.empty()) continue;
+                const long long i = std::stoll(number);  // the check accepted it: a whole number in range
+                const long long n = static_cast<long long>(view.counts[part]);
+                index[part] = static_cast<std::int32_t>(i > 0 ? i - 1 : n + i);
+            }
+            face.push_back({index[0], index[2], index[1]});
+        }
+        view.faces.push_back(std::move(face));
+    }
+    return view;
+}
+
+void check_obj_view(std::string_view text, const RawMesh& raw) {
+    const ObjView view = view_obj(text);
+    expect(raw.positions.size() == view.counts[0], "the OBJ reader sees the same vertices as the check");
+    expect(raw.uvs.size() == view.counts[1], "the OBJ reader sees the same texture coordinates as the check");
+    expect(raw.normals.size() == view.counts[2], "the OBJ reader sees the same normals as the check");
+    std::size_t next = 0;
+    for (const auto& face : view.faces) {
+        const std::size_t corners = 3 * (face.size() - 2);
+        expect(next + corners <= raw.triangle_corners.size(), "every face's triangles are there");
+        for (std::size_t c = 0; c < corners; ++c) {
+            const Corner& corner = raw.triangle_corners[next + c];
+            expect(std::find(face.begin(), face.end(), corner) != face.end(),
+                   "a face's triangles use that face's own corners");
+            if (face.size() == 3) expect(corner == face[c], "a triangle keeps its corners in order");
+        }
+        next += corners;
+    }
+    expect(next == raw.triangle_corners.size(), "no triangle comes from nowhere");
 }
 
 // What mesh.h promises of build_mesh: one particle per distinct position (within 1e-6 of the
@@ -118,6 +191,7 @@ void mesh_input(std::string_view data) {
             continue;
         }
         check_raw(raw);
+        if (!off) check_obj_view(text, raw);
         try {
             const Mesh mesh = build_mesh(raw, "fuzz");
             check_mesh(raw, mesh);

@@ -380,6 +380,11 @@ TEST(HostileFiles, OddObjLines) {
     EXPECT_REFUSED_NAMING(load_mesh(dir.write("c.obj", head + "vt 0 0\nvn 0 0 1\nf 1/1/1/1 2 3\n")), "c.obj:6:",
                           "more than three");
     EXPECT_REFUSED_NAMING(load_mesh(dir.write("d.obj", head + "vn 0 0 1\nf 1//1/ 2 3\n")), "d.obj:5:");
+    // A corner that ends with '/': the reader would take the next corner's number for it.
+    for (const char* corner : {"1/", "1//", "1/1/"}) {
+        EXPECT_REFUSED_NAMING(load_mesh(dir.write("h.obj", head + "vt 0 0\nvn 0 0 1\nf " + corner + " 2 3\n")),
+                              "h.obj:6:", "ends with '/'");
+    }
     EXPECT_REFUSED_NAMING(load_mesh(dir.write("e.obj", "v 0 0 0#x\n")), "e.obj:1:", "0#x");
     // Old Mac line ends (a lone CR) are line ends, as the reader sees them.
     EXPECT_EQ(load_mesh(dir.write("f.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r")).triangle_count(), 1u);
