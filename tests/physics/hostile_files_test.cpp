@@ -19,26 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-template <class F>
-std::string error_of(F&& action) {
-    try {
-        action();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-
-#define EXPECT_REFUSED_NAMING(action, ...)                                             \
-    do {                                                                                \
-        const std::string message_ = error_of([&] { action; });                         \
-        EXPECT_FALSE(message_.empty()) << #action << " was accepted";                    \
-        for (const char* part_ : {__VA_ARGS__}) {                                       \
-            EXPECT_NE(message_.find(part_), std::string::npos)                          \
-                << #action << ": message \"" << message_ << "\" lacks \"" << part_ << "\""; \
-        }                                                                               \
-        EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_; \
-    } while (0)
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -11,26 +11,6 @@
 namespace softbody::test {
 namespace {
 
-template <class F>
-std::string error_of(F&& action) {
-    try {
-        action();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-
-#define EXPECT_REFUSED_NAMING(action, ...)                                             \
-    do {                                                                                \
-        const std::string message_ = error_of([&] { action; });                         \
-        EXPECT_FALSE(message_.empty()) << #action << " was accepted";                    \
-        for (const char* part_ : {__VA_ARGS__}) {                                       \
-            EXPECT_NE(message_.find(part_), std::string::npos)                          \
-                << #action << ": message \"" << message_ << "\" lacks \"" << part_ << "\""; \
-        }                                                                               \
-        EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_; \
-    } while (0)
 
 // --- Welding ----------------------------------------------------------------------------------
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/params.h"
 #include "physics/world.h"
@@ -116,5 +117,28 @@ inline std::string read_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
+
+// The message of the InputError that `action` throws ("" when it throws none).
+template <class F>
+std::string error_of(F&& action) {
+    try {
+        action();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// `action` must be refused with one line that names each of the given parts.
+#define EXPECT_REFUSED_NAMING(action, ...)                                                   \
+    do {                                                                                      \
+        const std::string message_ = ::softbody::test::error_of([&] { action; });             \
+        EXPECT_FALSE(message_.empty()) << #action << " was accepted";                          \
+        for (const char* part_ : {__VA_ARGS__}) {                                             \
+            EXPECT_NE(message_.find(part_), std::string::npos)                                \
+                << #action << ": message \"" << message_ << "\" lacks \"" << part_ << "\"";    \
+        }                                                                                     \
+        EXPECT_EQ(message_.find('\n'), std::string::npos) << "not one line: " << message_;    \
+    } while (0)
 
 }  // namespace softbody::test
