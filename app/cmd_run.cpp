@@ -218,7 +218,8 @@ int run_command(int argc, char** argv, int first) {
     };
     const auto [rss_end, rss_peak] = resident_kib();
     out["memory_kib"] = {{"after_warmup", rss_after_warmup}, {"end", rss_end}, {"peak", rss_peak}};
-    std::cout << out.dump() << std::endl;
+    // A file name need not be UTF-8: its odd bytes are replaced in the summary, not fatal.
+    std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
     return kOk;
 }
 

@@ -124,7 +124,8 @@ int simulate_command(int argc, char** argv) {
         {"state_hash", hash},
     };
     if (!ok) out["reason"] = world.divergence();
-    std::cout << out.dump() << std::endl;
+    // A file name need not be UTF-8: its odd bytes are replaced in the summary, not fatal.
+    std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
     if (!ok) {
         std::cerr << "softbody: " << world.divergence() << "\n";
         return kDiverged;
