@@ -13,6 +13,7 @@
 
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
+#include "../physics/test_support.h"  // random_cloud and the other shared helpers
 
 namespace softbody::test {
 
@@ -45,16 +46,6 @@ inline PairState deformed(const std::vector<Vec3>& rest, std::uint32_t seed, flo
     return s;
 }
 
-inline std::vector<Vec3> random_ball(std::size_t n, std::uint32_t seed, float radius = 1.0f) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    std::vector<Vec3> out;
-    while (out.size() < n) {
-        const Vec3 p{u(rng), u(rng), u(rng)};
-        if (dot(p, p) <= 1.0f) out.push_back(p * radius);
-    }
-    return out;
-}
 
 // A closed torus of rings x segments vertices, 2 triangles per quad, welded and indexed as
 // load_mesh would give it.

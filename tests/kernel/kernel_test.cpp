@@ -39,13 +39,13 @@ void expect_matches_reference(const PairState& s, const std::string& what) {
 // SIMD vectors and of the 256-particle blocks, and a few blocks with a ragged last one.
 TEST(PairKernel, MatchesReferenceOnRandomClouds) {
     for (std::size_t n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 100, 255, 256, 257, 300, 511, 512, 513, 1000, 1025, 1337, 2600}) {
-        expect_matches_reference(deformed(random_ball(n, 7u + n), 100u + n), "random cloud");
+        expect_matches_reference(deformed(random_cloud(n, 7u + n), 100u + n), "random cloud");
     }
 }
 
 TEST(PairKernel, MatchesReferenceFarFromRest) {
     // Strongly stretched and squashed: l far from l0, large relative speeds.
-    PairState s = deformed(random_ball(700, 3u), 4u, 0.8f);
+    PairState s = deformed(random_cloud(700, 3u), 4u, 0.8f);
     for (std::size_t i = 0; i < s.size(); ++i) s.v.set(i, s.v[i] * 20.0f);
     expect_matches_reference(s, "far from rest");
 }
@@ -84,7 +84,7 @@ TEST(PairKernel, TwoParticlesClosedForm) {
 TEST(PairKernel, CoincidentParticlesGiveNoForceAndNoNaN) {
     // Duplicates at exactly the same position (with different rest positions, so their rest
     // length is not zero), in a cloud whose size leaves ragged vectors and blocks.
-    PairState s = deformed(random_ball(300, 21u), 22u);
+    PairState s = deformed(random_cloud(300, 21u), 22u);
     for (std::size_t i = 0; i < 300; i += 7) s.x.set(i + 1 < 300 ? i + 1 : i, s.x[i]);  // pairs (i, i+1) coincide
     Vec3Array expected;
     pair_forces_reference(s.input(), expected);
@@ -102,7 +102,7 @@ TEST(PairKernel, CoincidentParticlesGiveNoForceAndNoNaN) {
 
     // Everything at one point: no pair has a direction, so no force at all.
     for (std::size_t n : {2, 17, 260}) {
-        PairState same = deformed(random_ball(n, 23u), 24u);
+        PairState same = deformed(random_cloud(n, 23u), 24u);
         for (std::size_t i = 0; i < n; ++i) same.x.set(i, {0.25f, -1.0f, 3.0f});
         for (PairKernelVariant variant : variants_here()) {
             ThreadPool pool(1);
@@ -118,7 +118,7 @@ TEST(PairKernel, CoincidentParticlesGiveNoForceAndNoNaN) {
 
 TEST(PairKernel, BitIdenticalAcrossRunsAndThreadCounts) {
     for (std::size_t n : {3, 257, 1100, 2000}) {
-        const PairState s = deformed(random_ball(n, 31u), 32u);
+        const PairState s = deformed(random_cloud(n, 31u), 32u);
         for (PairKernelVariant variant : variants_here()) {
             ThreadPool one(1);
             PairForceKernel kernel(one, variant);
@@ -138,7 +138,7 @@ TEST(PairKernel, BitIdenticalAcrossRunsAndThreadCounts) {
 }
 
 TEST(PairKernel, ElasticEnergyMatchesReference) {
-    const PairState s = deformed(random_ball(600, 41u), 42u, 0.1f);
+    const PairState s = deformed(random_cloud(600, 41u), 42u, 0.1f);
     const double expected = elastic_energy_reference(s.input());
     ASSERT_GT(expected, 0.0);
     // Each stretch l - l0 is a difference of two float lengths: both kernels round it to within

@@ -12,7 +12,7 @@ namespace {
 
 Mesh cloud(std::size_t n) {
     RawMesh raw;
-    raw.positions = random_ball(n, 2000u, 0.5f);
+    raw.positions = random_cloud(n, 2000u, 0.5f);
     return build_mesh(raw, "cloud");
 }
 
