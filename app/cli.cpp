@@ -18,13 +18,22 @@ std::string_view Args::value(std::string_view option) {
     return next();
 }
 
+namespace {
+// The shortest text that reads back as the same number: 1, 1000, 0.0001, 1e+07.
+std::string shortest(double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, value);
+    return std::string(text, result.ptr);
+}
+}  // namespace
+
 double parse_double(std::string_view option, std::string_view text, double min, double max) {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
         value < min || value > max) {
-        throw UsageError(std::string(option) + ": expected a number from " + std::to_string(min) + " to " +
-                         std::to_string(max) + ", got '" + std::string(text) + "'");
+        throw UsageError(std::string(option) + ": expected a number from " + shortest(min) + " to " + shortest(max) +
+                         ", got '" + std::string(text) + "'");
     }
     return value;
 }

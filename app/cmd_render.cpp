@@ -1,6 +1,7 @@
 // softbody render: simulates a scene from t = 0 at the fixed tick and writes one PNG per
 // requested time, rendered headless (OSMesa, no display). Same inputs, same bytes.
-// One JSON line per image on stdout: time, tick, state_hash, file.
+// One JSON line per image on stdout: time, tick, state_hash, file, and the resident memory
+// (a long sequence, --frames 2000 --fps 60, is the renderer's soak: the memory must stay flat).
 //
 // softbody render --bench measures the renderer instead (see render_bench below).
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "offscreen_context.h"
+#include "process_memory.h"
 #include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/world.h"
@@ -32,11 +34,14 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR\n"
+    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --frames N [--fps F] --out DIR\n"
     "                       [--size WxH] [--camera KEY=VALUE,...] [--overlay NAME,...] [--body STYLE]\n"
     "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--no-pattern] [--samples N]\n"
     "                       [--threads N]\n"
     "       softbody render --bench [--frames N]   (streaming, normals and frame times; no files)\n"
     "  --at        times in seconds; each is drawn between the two ticks around it\n"
+    "  --frames    N images at F per second from t = 0 (default --fps 60), DIR/<scene>_<frame>.png\n"
+    "              numbered from 0 with leading zeros (an animation's frames, in name order)\n"
     "  --out       folder for DIR/<scene>_t<time>.png (created if missing)\n"
     "  --size      image size, 16..8192 each way (default 800x600)\n"
     "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
@@ -205,6 +210,8 @@ int render_command(int argc, char** argv) {
     Args args(argc, argv, 2);
     SceneOptions scene;
     std::vector<double> times;
+    long sequence_frames = 0;
+    double fps = 60.0;
     std::string out_dir;
     int width = 800, height = 600;
     CameraOptions camera_options;
@@ -216,6 +223,10 @@ int render_command(int argc, char** argv) {
         const std::string_view option = args.next();
         if (option == "--at") {
             for (std::string_view t : split(args.value(option), ',')) times.push_back(parse_double(option, t, 0.0, 1e5));
+        } else if (option == "--frames") {
+            sequence_frames = parse_int(option, args.value(option), 1, 1000000);
+        } else if (option == "--fps") {
+            fps = parse_double(option, args.value(option), 1.0, 1000.0);
         } else if (option == "--out") {
             out_dir = args.value(option);
             if (out_dir.empty()) throw UsageError("--out: expected a folder");
@@ -255,7 +266,9 @@ int render_command(int argc, char** argv) {
             throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
         }
     }
-    if (times.empty()) throw UsageError(std::string("--at T1,T2,... is required\n") + kUsage);
+    if (sequence_frames > 0 && !times.empty()) throw UsageError("--at and --frames: give one or the other");
+    for (long k = 0; k < sequence_frames; ++k) times.push_back(double(k) / fps);
+    if (times.empty()) throw UsageError(std::string("--at T1,T2,... or --frames N is required\n") + kUsage);
     if (out_dir.empty()) throw UsageError(std::string("--out DIR is required\n") + kUsage);
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
@@ -264,7 +277,7 @@ int render_command(int argc, char** argv) {
     const Params params = scene.resolve();
     World world(params, load_mesh(params.mesh), WorldOptions{threads, false});
     const std::string name = scene.name(params);
-    for (std::size_t i = 1; i < times.size(); ++i) {
+    for (std::size_t i = 1; i < times.size() && sequence_frames == 0; ++i) {
         if (time_label(times[i]) == time_label(times[i - 1])) {
             throw UsageError("--at: " + std::to_string(times[i - 1]) + " and " + std::to_string(times[i]) +
                              " round to the same file name (times are written to the millisecond)");
@@ -293,7 +306,9 @@ int render_command(int argc, char** argv) {
     fix_camera();
 
     const double dt = double(params.dt);
-    for (const double t : times) {
+    const std::size_t digits = std::max<std::size_t>(4, std::to_string(sequence_frames - 1).size());
+    for (std::size_t k = 0; k < times.size(); ++k) {
+        const double t = times[k];
         // The image at time t lies between ticks n - 1 and n: n = ceil(t / dt).
         // dt is a float (0.02f is not 0.02): a time within 1e-4 tick of a tick is that tick.
         double ticks_exact = t / dt;
@@ -311,11 +326,16 @@ int render_command(int argc, char** argv) {
             fix_camera();
         }
         renderer.draw(frame, width, height);
-        const std::filesystem::path file = dir / (name + "_t" + time_label(t) + ".png");
+        std::string label = "t" + time_label(t);
+        if (sequence_frames > 0) {
+            label = std::to_string(k);
+            label.insert(0, digits - std::min(digits, label.size()), '0');
+        }
+        const std::filesystem::path file = dir / (name + "_" + label + ".png");
         render::write_png(file.string(), renderer.read_back());
         nlohmann::ordered_json line = {
             {"time", t}, {"tick", world.ticks()}, {"alpha", alpha}, {"state_hash", hex(world.state_hash())},
-            {"file", file.string()},
+            {"file", file.string()}, {"memory_kib", resident_memory().now_kib},
         };
         std::cout << line.dump() << std::endl;
     }

@@ -10,7 +10,6 @@
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +20,7 @@
 #include "gui/panels.h"
 #include "gui/script.h"
 #include "gui/window.h"
+#include "process_memory.h"
 #include "physics/error.h"
 #include "physics/scene_io.h"
 #include "render/image.h"
@@ -48,17 +48,6 @@ void save_window(const std::string& path, int width, int height) {
     }
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     render::write_png(path, image);
-}
-
-// Resident memory now and at its peak, in KiB (Linux), for the soak's "memory stays flat".
-std::pair<long, long> resident_kib() {
-    std::ifstream status("/proc/self/status");
-    long rss = -1, peak = -1;
-    for (std::string line; std::getline(status, line);) {
-        if (line.rfind("VmRSS:", 0) == 0) rss = std::stol(line.substr(6));
-        if (line.rfind("VmHWM:", 0) == 0) peak = std::stol(line.substr(6));
-    }
-    return {rss, peak};
 }
 
 void run_script_command(Demo& demo, const ScriptCommand& command) {
@@ -154,7 +143,7 @@ int run_command(int argc, char** argv, int first) {
     std::size_t next_command = 0;
     std::int64_t script_start = 0;
     constexpr std::int64_t kWarmupFrames = 100;
-    long rss_after_warmup = -1;  // frame the script's frame 0 falls on (moves at "loop")
+    ResidentMemory after_warmup;  // once the first frames have allocated what every frame reuses
     double last = window.time();
     for (std::int64_t frame = 0; !window.should_close() && (!scripted || frame < frames); ++frame) {
         window.poll_events();
@@ -202,7 +191,7 @@ int run_command(int argc, char** argv, int first) {
             save_window(screenshot_path, static_cast<int>(width), static_cast<int>(height));
         }
         window.swap_buffers();
-        if (frame == kWarmupFrames) rss_after_warmup = resident_kib().first;
+        if (frame == kWarmupFrames) after_warmup = resident_memory();
     }
 
     // A summary for scripts and tests: what the session ended with.
@@ -216,8 +205,10 @@ int run_command(int argc, char** argv, int first) {
         {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
         {"params", nlohmann::json::parse(scene_to_json(world.params()))},
     };
-    const auto [rss_end, rss_peak] = resident_kib();
-    out["memory_kib"] = {{"after_warmup", rss_after_warmup}, {"end", rss_end}, {"peak", rss_peak}};
+    // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.
+    const ResidentMemory end = resident_memory();
+    out["memory_kib"] = {{"after_warmup", after_warmup.now_kib}, {"peak_after_warmup", after_warmup.peak_kib},
+                         {"end", end.now_kib},                   {"peak", end.peak_kib}};
     // A file name need not be UTF-8: its odd bytes are replaced in the summary, not fatal.
     std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
     return kOk;

@@ -3,10 +3,11 @@
 // it may not write in, a full disk, a file size limit) the old file is left exactly as it was
 // and no temporary file is left behind.
 //
-// Failures are made without root: a file size limit (RLIMIT_FSIZE, with SIGXFSZ ignored, so a
-// write past it fails with EFBIG as on a full disk) and, where this system lets a process have
-// a mount namespace of its own, a genuinely full 8 KiB tmpfs. Each runs in a child process so
-// the limit and the mount end with it.
+// The failures are real, and each is made in a child process so it ends with it: a read-only
+// folder (as root, the child saves as the unprivileged user, since root writes anywhere), a file
+// size limit (RLIMIT_FSIZE, with SIGXFSZ ignored, so a write past it fails with EFBIG as on a
+// full disk) and, where this system lets a process have a mount namespace of its own, a
+// genuinely full 8 KiB tmpfs.
 #include <sched.h>
 #include <sys/mount.h>
 #include <sys/resource.h>
@@ -47,26 +48,6 @@ Params new_params() {
     p.stiffness = 20.0f;
     p.pinned = {1, 2, 3};
     return p;
-}
-
-// Runs `body` in a child process and returns its exit code (128 + the signal if one ended it).
-// The body reports through its return value only: test assertions in a child would be lost.
-int in_child(const std::function<int()>& body) {
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid < 0) return -1;
-    if (pid == 0) {
-        int code = 90;
-        try {
-            code = body();
-        } catch (...) {
-            code = 91;
-        }
-        ::_exit(code);
-    }
-    int status = 0;
-    if (::waitpid(pid, &status, 0) != pid) return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 // In a child: saves and returns 0 when it fails with InputError naming the file and `reason`,
@@ -121,6 +102,8 @@ TEST(SaveScene, LongestFileNameSaves) {
     EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{name});
 }
 
+// A folder the saving user may read but not write in (mode 555). Root may write anywhere, so as
+// root the save runs as the unprivileged user instead (as_unprivileged_user).
 TEST(SaveScene, ReadOnlyFolderLeavesTheOldFile) {
     TempDir dir;
     const fs::path folder = dir.path() / "presets";
@@ -129,24 +112,18 @@ TEST(SaveScene, ReadOnlyFolderLeavesTheOldFile) {
     {
         std::ofstream(path) << kOldScene;
     }
-    fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec);
-    const bool can_write = ::access(folder.c_str(), W_OK) == 0;
-    if (can_write) {
-        fs::permissions(folder, fs::perms::owner_all);
-        GTEST_SKIP() << "running as root (or with CAP_DAC_OVERRIDE): a read-only folder is still writable; "
-                        "SaveScene.FileSizeLimitLeavesTheOldFile and SaveScene.FullDiskLeavesTheOldFile cover failed writes";
-    }
-    const std::string message = [&] {
-        try {
-            save_scene(path, new_params(), Overwrite::Yes);
-        } catch (const InputError& e) {
-            return std::string(e.what());
+    fs::permissions(folder, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+    const int code = as_unprivileged_user([&] {
+        if (::access(folder.c_str(), W_OK) == 0) return 77;  // CAP_DAC_OVERRIDE without being root
+        if (const int replace = save_expecting_failure(path, Overwrite::Yes, "Permission denied"); replace != 0) {
+            return 20 + replace;
         }
-        return std::string();
-    }();
+        return 30 + save_expecting_failure((folder / "fresh.json").string(), Overwrite::No, "Permission denied");
+    });
     fs::permissions(folder, fs::perms::owner_all);
-    EXPECT_NE(message.find("scene.json"), std::string::npos) << message;
-    EXPECT_NE(message.find("Permission denied"), std::string::npos) << message;
+    if (code == 77) GTEST_SKIP() << "this process may write in a read-only folder and cannot give that up";
+    EXPECT_EQ(code, 30) << "20+n: replacing, 30+n: a new file; n = 1 saved, 2 wrong message, 3 other exception";
     EXPECT_EQ(read_text(path), kOldScene);
     EXPECT_EQ(names_in(folder), std::vector<std::string>{"scene.json"});
 }

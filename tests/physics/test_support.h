@@ -2,14 +2,18 @@
 // unless a test turns it on, and a temporary folder for test files.
 #pragma once
 
+#include <grp.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -116,6 +120,39 @@ private:
 inline std::string read_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Runs `body` in a child process and returns its exit code (128 + the signal if one ended it).
+// The body reports through its return value only: test assertions in a child would be lost.
+inline int in_child(const std::function<int()>& body) {
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        int code = 90;
+        try {
+            code = body();
+        } catch (...) {
+            code = 91;
+        }
+        ::_exit(code);
+    }
+    int status = 0;
+    if (::waitpid(pid, &status, 0) != pid) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Like in_child, but as a user that file permissions apply to. Root reads and writes past any
+// mode, so as root the child first becomes the unprivileged user "nobody" (uid and gid 65534);
+// 77 when it cannot. The files it touches must lie where others may reach them (TempDir's do).
+inline int as_unprivileged_user(const std::function<int()>& body) {
+    return in_child([&] {
+        if (::geteuid() == 0) {
+            constexpr unsigned kNobody = 65534;
+            if (::setgroups(0, nullptr) != 0 || ::setgid(kNobody) != 0 || ::setuid(kNobody) != 0) return 77;
+        }
+        return body();
+    });
 }
 
 // The message of the InputError that `action` throws ("" when it throws none).
