@@ -306,7 +306,14 @@ int render_command(int argc, char** argv) {
     fix_camera();
 
     const double dt = double(params.dt);
-    const std::size_t digits = std::max<std::size_t>(4, std::to_string(sequence_frames - 1).size());
+    // File names: "t<time>" for --at; for --frames the frame number, padded with zeros to the
+    // last one's width (at least 4), so that name order is frame order.
+    const auto label_of = [&, digits = std::max<std::size_t>(4, std::to_string(sequence_frames - 1).size())](
+                              std::size_t k, double t) {
+        if (sequence_frames == 0) return "t" + time_label(t);
+        const std::string number = std::to_string(k);
+        return std::string(digits - std::min(digits, number.size()), '0') + number;
+    };
     for (std::size_t k = 0; k < times.size(); ++k) {
         const double t = times[k];
         // The image at time t lies between ticks n - 1 and n: n = ceil(t / dt).
@@ -326,12 +333,7 @@ int render_command(int argc, char** argv) {
             fix_camera();
         }
         renderer.draw(frame, width, height);
-        std::string label = "t" + time_label(t);
-        if (sequence_frames > 0) {
-            label = std::to_string(k);
-            label.insert(0, digits - std::min(digits, label.size()), '0');
-        }
-        const std::filesystem::path file = dir / (name + "_" + label + ".png");
+        const std::filesystem::path file = dir / (name + "_" + label_of(k, t) + ".png");
         render::write_png(file.string(), renderer.read_back());
         nlohmann::ordered_json line = {
             {"time", t}, {"tick", world.ticks()}, {"alpha", alpha}, {"state_hash", hex(world.state_hash())},

@@ -46,7 +46,6 @@ inline PairState deformed(const std::vector<Vec3>& rest, std::uint32_t seed, flo
     return s;
 }
 
-
 // A closed torus of rings x segments vertices, 2 triangles per quad, welded and indexed as
 // load_mesh would give it.
 inline Mesh torus(int rings, int segments) {

@@ -11,7 +11,6 @@
 namespace softbody::test {
 namespace {
 
-
 // --- Welding ----------------------------------------------------------------------------------
 
 // A square in two triangles, written as an exporter does at a UV seam: each triangle has its

@@ -13,7 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 TEST(Params, DefaultsAreListing8s) {
     const Params p;
     EXPECT_EQ(p.particle_mass, 1.0f);

@@ -59,7 +59,7 @@ int save_expecting_failure(const std::string& path, Overwrite overwrite, const c
     } catch (const InputError& e) {
         const std::string message = e.what();
         std::fprintf(stderr, "save_scene said: %s\n", message.c_str());
-        return message.find(path) != std::string::npos && message.find(reason) != std::string::npos ? 0 : 2;
+        return refusal_fault(message, {path.c_str(), reason}).empty() ? 0 : 2;
     } catch (...) {
         return 3;
     }
