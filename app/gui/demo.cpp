@@ -208,7 +208,7 @@ std::optional<std::uint32_t> Demo::pick(float x, float y, float width, float hei
 void Demo::begin_grab(std::uint32_t particle, float x, float y, float width, float height) {
     const glm::vec3 at = to_glm(world_->positions()[particle]);
     grab_depth_ = glm::dot(at - camera.eye(), camera.forward());
-    world_->set_grab(Grab{particle, world_->positions()[particle], 0.0f});
+    world_->set_grab(Grab{particle, world_->positions()[particle], 0.0f, 0});
     drag(x, y, width, height);
 }
 

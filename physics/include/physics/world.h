@@ -1,10 +1,11 @@
-// The soft body of Listing 8 and the world it lives in: particles, every-pair springs and
-// dampers, gravity, drag, a ground plane with restitution and Coulomb friction, and a fixed
-// tick advanced by one of four integrators.
+// The world: its settings (dt, gravity, integrator, substeps, ground, air, friction,
+// restitution), its soft bodies (Listing 8), and one fixed tick that advances them all.
 //
-// Layout follows "topology apart from state": the rest positions (from which every rest length
-// comes) never change after construction; x, Verlet's step x_n - x_{n-1}, v and 1/m are the
-// state, in flat arrays.
+// tick() is the step in order and nothing else (world.cpp): forces, integration, contacts,
+// checks. Each of those lives in a file of its own, named for its concept.
+//
+// Soft bodies do not collide with one another (as in Jolt): each feels its own springs and
+// dampers, gravity, drag and the ground.
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,8 @@
 
 #include "physics/arrays.h"
 #include "physics/mesh.h"
-#include "physics/pair_forces.h"
 #include "physics/params.h"
+#include "physics/soft_body.h"
 #include "physics/thread_pool.h"
 
 namespace softbody {
@@ -47,7 +48,8 @@ struct Stability {
 struct Grab {
     std::uint32_t particle = 0;
     Vec3 target;
-    float stiffness = 0.0f;  // N/m; 0 picks one that moves the body briskly
+    float stiffness = 0.0f;     // N/m; 0 picks one that moves the body briskly
+    std::uint32_t body = 0;     // which soft body
 };
 
 struct WorldOptions {
@@ -55,9 +57,22 @@ struct WorldOptions {
     bool reference_kernel = false;  // use the readable one-pair-at-a-time loop
 };
 
+// What a world is built from: its settings, and each soft body with its own keys and mesh.
+struct SoftBodyDef {
+    std::string name = "body";
+    Params params;  // the body's keys (ParamScope::Body); world keys are taken from WorldDef
+    Mesh mesh;
+};
+struct WorldDef {
+    Params params;  // world keys (ParamScope::World); the body keys of the first soft body too
+    std::vector<SoftBodyDef> soft_bodies;
+};
+
 class World {
 public:
     // Throws InputError for invalid params or pins that name no vertex.
+    explicit World(WorldDef def, WorldOptions options = {});
+    // One soft body, named "body", with the keys of `params`.
     World(const Params& params, Mesh mesh, WorldOptions options = {});
     ~World();
     World(const World&) = delete;
@@ -67,20 +82,22 @@ public:
     void tick();
     void run(std::uint64_t ticks);
 
-    // Back to the start: the mesh placed by init_height and scale, with the current params.
+    // Back to the start: every body placed as it was built, with the current params.
     void reset();
 
-    // Keys marked live in param_table() apply from the next tick; the rest (mesh, scale,
-    // init_height, initial_velocity, pinned) apply at the next reset(). Throws InputError.
+    // The world's keys, and the first soft body's. Keys marked live in param_table() apply
+    // from the next tick; the rest (mesh, scale, init_height, initial_velocity, pinned) apply
+    // at the next reset(). Throws InputError.
     void set_params(const Params& params);
     const Params& params() const { return params_; }
 
     void set_threads(int threads);
     int threads() const { return pool_->threads(); }
 
-    // Interaction (the app's mouse): pin or free a particle, or pull one toward a point.
+    // Interaction (the app's mouse): pin or free a particle of the first soft body, or pull one
+    // toward a point.
     void set_pinned(std::uint32_t particle, bool pinned);
-    bool is_pinned(std::uint32_t particle) const { return inv_mass_[particle] == 0.0f; }
+    bool is_pinned(std::uint32_t particle) const { return body().is_pinned(particle); }
     void set_grab(std::optional<Grab> grab) {
         grab_ = grab;
         energy_baseline_stale_ = true;  // the grab does work on the body
@@ -93,57 +110,46 @@ public:
     std::uint64_t ticks() const { return ticks_; }
     double time() const { return static_cast<double>(ticks_) * static_cast<double>(params_.dt); }
 
-    const Mesh& mesh() const { return mesh_; }
-    std::size_t particle_count() const { return x_.size(); }
-    std::size_t spring_count() const { return particle_count() * (particle_count() - 1) / 2; }
-    const Vec3Array& positions() const { return x_; }
-    const Vec3Array& previous_tick_positions() const { return x_tick_prev_; }  // for interpolation
-    const Vec3Array& velocities() const { return v_; }
+    // --- Bodies ---------------------------------------------------------------------------------
+    std::size_t soft_body_count() const { return soft_.size(); }
+    const SoftBody& soft_body(std::size_t i) const { return soft_[i]; }
+    // The first soft body (the scene's flat keys): what the accessors below describe.
+    const SoftBody& body() const { return soft_.front(); }
+    const Mesh& mesh() const { return body().mesh; }
+    std::size_t particle_count() const { return body().particle_count(); }
+    std::size_t spring_count() const { return body().spring_count(); }
+    const Vec3Array& positions() const { return body().x; }
+    const Vec3Array& previous_tick_positions() const { return body().x_tick_prev; }  // for interpolation
+    const Vec3Array& velocities() const { return body().v; }
     // Net force on each particle (N) at the last force evaluation, friction included: for display.
-    const Vec3Array& forces() const { return force_; }
-    const Vec3Array& rest_positions() const { return rest_; }
-    const FloatArray& inverse_masses() const { return inv_mass_; }
+    const Vec3Array& forces() const { return body().force; }
+    const Vec3Array& rest_positions() const { return body().rest; }
+    const FloatArray& inverse_masses() const { return body().inv_mass; }
 
+    // --- Diagnostics (energy.cpp, stability.cpp) ----------------------------------------------
     Energy energy();
-    Vec3 center_of_mass() const;
-    float min_z() const;
-    Stability stability() const;
+    Vec3 center_of_mass() const;  // of the first soft body
+    float min_z() const;          // of the first soft body
+    Stability stability() const;  // the least stable soft body's
     int substeps_in_use() const { return substeps_; }
-    std::uint64_t state_hash() const;  // FNV-1a over the bits of x and v
+    std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v
 
 private:
-    struct Contact;
-    struct StateView;
-
-    void build_particles();
-    void apply_pins();
+    void build();
     void update_substeps();
     void step(float h);
-    void accelerations(const StateView& s, Vec3Array& a, bool record_contacts);
-    void resolve_contacts(float h);
+    void evaluate_forces(int stage, bool record_contacts);
     void check_divergence();
     void take_energy_baseline();
     double kinetic_plus_gravity() const;
-    PairInput pair_input(const StateView& s) const;
 
     Params params_;
-    Mesh mesh_;
+    std::vector<SoftBody> soft_;
     std::unique_ptr<ThreadPool> pool_;
-    std::unique_ptr<PairForceKernel> kernel_;
     bool reference_kernel_;
 
-    // Topology (fixed): rest positions.
-    Vec3Array rest_;
-    float rest_radius_ = 0.0f;  // bounding sphere about the rest centre of mass (Eq. 23's S)
-
-    // State.
-    Vec3Array x_, v_;
-    Vec3Array verlet_step_;     // Verlet's x_n - x_{n-1}, carried as such (see step())
-    FloatArray inv_mass_;       // 0 for pinned particles
-    float mass_ = 1.0f;
     std::uint64_t ticks_ = 0;
     int substeps_ = 1;
-    float verlet_h_ = 0.0f;     // step verlet_step_ was made for (0: make it from v)
     Status status_ = Status::Ok;
     std::string divergence_;
     std::optional<Grab> grab_;
@@ -152,11 +158,6 @@ private:
     double energy_baseline_ = 0.0;  // total energy then, J
     double energy_scale_ = 0.0;     // energy in play then: kinetic + elastic + weight x height, J
     bool energy_baseline_stale_ = true;
-
-    // Scratch, kept to avoid allocating every step.
-    Vec3Array force_, accel_[4], x_tmp_, v_stage_, v_sum_;
-    Vec3Array x_tick_prev_, x_good_, v_good_, verlet_step_good_;
-    std::vector<Contact> contacts_;
 };
 
 }  // namespace softbody

@@ -14,11 +14,10 @@
 // Each integrator maps (x, v) of a mode to A (x, v) every step; the step is stable while the
 // spectral radius of A stays at or below 1. That radius is computed here for the fastest mode
 // and slower ones (explicit Euler can grow on slow modes first).
+#include "stability.h"
+
 #include <algorithm>
 #include <cmath>
-#include <complex>
-
-#include "physics/world.h"
 
 namespace softbody {
 
@@ -70,30 +69,48 @@ double growth(Integrator integrator, double h, double lambda_max, double k, doub
 
 }  // namespace
 
-Stability World::stability() const {
+Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps) {
     Stability s;
-    const double n = static_cast<double>(particle_count());
-    const double lambda = n >= 2.0 ? n / double(mass_) : 0.0;  // lambda_max of M^-1 G, see above
-    const double k = params_.stiffness, c = params_.damping, dt = params_.dt;
+    const double n = static_cast<double>(body.particle_count());
+    const double lambda = n >= 2.0 ? n / double(body.mass) : 0.0;  // lambda_max of M^-1 G, see above
+    const double k = body.params.stiffness, c = body.params.damping, dt = world.dt;
     s.omega_max = std::sqrt(k * lambda);
     s.gamma_max = c * lambda;
-    s.substeps = substeps_;
-    s.h = dt / substeps_;
+    s.substeps = substeps;
+    s.h = dt / substeps;
     s.h_omega = std::sqrt(s.h * s.h * s.omega_max * s.omega_max + 2.0 * s.h * s.gamma_max);
-    s.limit = params_.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
+    s.limit = world.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
     constexpr double kTolerance = 1e-9;  // an undamped mode under Verlet sits at exactly 1
-    s.growth = growth(params_.integrator, s.h, lambda, k, c);
+    s.growth = growth(world.integrator, s.h, lambda, k, c);
     s.stable = s.growth <= 1.0 + kTolerance;
     // Fewest substeps stable with a 25% margin on lambda (about 12% on omega): stretched springs
     // stiffen a little, and a run right at the limit would sit on the edge of growing.
     s.substeps_needed = 0;
     for (int sub = 1; sub <= 1000; ++sub) {
-        if (growth(params_.integrator, dt / sub, 1.25 * lambda, k, c) <= 1.0 + kTolerance) {
+        if (growth(world.integrator, dt / sub, 1.25 * lambda, k, c) <= 1.0 + kTolerance) {
             s.substeps_needed = sub;
             break;
         }
     }
     return s;
+}
+
+// The world's step must suit its least stable body: the largest growth, and the most substeps
+// needed (where 0, none is enough, outranks every count).
+Stability World::stability() const {
+    Stability worst;
+    worst.substeps = substeps_;
+    worst.h = params_.dt / substeps_;
+    worst.limit = params_.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
+    int needed = 1;
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        const Stability s = soft_body_stability(soft_[b], params_, substeps_);
+        needed = b == 0 ? s.substeps_needed
+                        : (needed == 0 || s.substeps_needed == 0 ? 0 : std::max(needed, s.substeps_needed));
+        if (b == 0 || s.growth > worst.growth) worst = s;
+    }
+    worst.substeps_needed = needed;
+    return worst;
 }
 
 }  // namespace softbody

@@ -1,0 +1,80 @@
+// One soft body of Listing 8: a particle at every distinct vertex of a mesh, and a spring
+// (Eq. 21) and a damper (Eq. 22) between every pair of particles.
+//
+// Plain data, owned by the World (world.h), which advances it; what acts on it lives in one
+// file per concept: forces.cpp (gravity, drag, the grab), pair_forces.cpp (springs and
+// dampers), ground_contact.cpp (Eq. 24, 25 and impacts), integrators.cpp (the steps),
+// stability.cpp, divergence.cpp, energy.cpp.
+//
+// Topology apart from state, as Ten Minute Physics lays it out: the rest positions (every rest
+// length comes from them) never change after the body is built; x, Verlet's step
+// x_n - x_{n-1}, v and 1/m are the state, in flat arrays.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "physics/arrays.h"
+#include "physics/mesh.h"
+#include "physics/pair_forces.h"
+#include "physics/params.h"
+
+namespace softbody {
+
+// A particle touching the ground at the start of a step, and what friction did to it
+// (ground_contact.cpp).
+struct ParticleContact {
+    std::uint32_t particle;
+    bool held;            // static friction (Eq. 24) cancelled the whole tangential force
+    bool sliding;         // dynamic friction (Eq. 25) acted
+    float x0, y0;         // tangential position at the start of the step
+    float vx0, vy0;       // tangential velocity at the start of the step
+};
+
+struct SoftBody {
+    std::string name = "body";  // the scene's flat keys make the body named "body"
+    Params params;              // this body's keys (ParamScope::Body in params.h); world keys unused
+    Mesh mesh;
+
+    // Topology (fixed): rest positions.
+    Vec3Array rest;
+    float rest_radius = 0.0f;  // bounding sphere about the rest centre (Eq. 23's S)
+
+    // State.
+    Vec3Array x, v;
+    Vec3Array verlet_step;     // Verlet's x_n - x_{n-1}, carried as such (see integrators.cpp)
+    FloatArray inv_mass;       // 0 for pinned particles
+    float mass = 1.0f;         // of each particle
+    float verlet_h = 0.0f;     // step verlet_step was made for (0: make it from v)
+
+    // Net force on each particle (N) at the last force evaluation, friction included: for display.
+    Vec3Array force;
+    // Positions at the start of the last tick: the renderer draws between them and x.
+    Vec3Array x_tick_prev;
+
+    // What the World keeps between ticks and steps.
+    std::unique_ptr<PairForceKernel> kernel;   // Eq. 21, 22 over every pair
+    std::vector<ParticleContact> contacts;     // ground contacts of the current step
+    Vec3Array accel[4], x_tmp, v_stage, v_sum; // integrator scratch (four stages for RK4)
+    Vec3Array x_good, v_good, verlet_step_good;  // the last state that passed the checks
+    float verlet_h_good = 0.0f;
+
+    std::size_t particle_count() const { return x.size(); }
+    std::size_t spring_count() const { return particle_count() * (particle_count() - 1) / 2; }
+    bool is_pinned(std::uint32_t particle) const { return inv_mass[particle] == 0.0f; }
+};
+
+// Listing 8: one particle per distinct vertex of body.mesh, turned by `rotation`, scaled by
+// `scale` and lifted by `init_height`, at rest, all moving at `initial_velocity`, pinned where
+// `pinned` says. Resets the whole state.
+void build_particles(SoftBody& body);
+
+// Pins or frees one particle; a pinned particle has 1/m = 0 and stays where it is.
+void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned);
+
+// Applies a new particle mass to every free particle.
+void set_particle_mass(SoftBody& body, float mass);
+
+}  // namespace softbody

@@ -1,0 +1,83 @@
+#include "ground_contact.h"
+
+#include <cmath>
+
+namespace softbody {
+
+namespace {
+
+constexpr float kContactTolerance = 1e-5f;  // m: a particle this close to the ground touches it
+constexpr float kStaticSpeed = 1e-4f;       // m/s: below this tangential speed, friction is static
+
+}  // namespace
+
+void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params& world, bool record) {
+    if (record) body.contacts.clear();
+    if (!world.ground) return;
+    Vec3Array& force = body.force;
+    const std::size_t n = body.particle_count();
+    const float mu_s = world.static_friction, mu_d = world.dynamic_friction;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (s.z[i] > world.ground_height + kContactTolerance || body.inv_mass[i] == 0.0f) continue;
+        const float F_n = force.z[i];  // F_applied . n; < 0 presses into the ground
+        if (!(F_n < 0.0f)) continue;
+        const float F_tx = force.x[i], F_ty = force.y[i];
+        const float F_t = std::sqrt(F_tx * F_tx + F_ty * F_ty);
+        const float v_tx = s.vx[i], v_ty = s.vy[i];
+        const float v_t = std::sqrt(v_tx * v_tx + v_ty * v_ty);
+        ParticleContact contact{static_cast<std::uint32_t>(i), false, false, s.x[i], s.y[i], v_tx, v_ty};
+        if (v_t < kStaticSpeed) {
+            // Eq. 24: F_friction = -(F_t/|F_t|) min(mu_s |F_n|, |F_t|).
+            const float limit = mu_s * -F_n;
+            if (F_t <= limit) {
+                force.x[i] = 0.0f;  // cancels F_t exactly: the particle stays put
+                force.y[i] = 0.0f;
+                contact.held = true;
+            } else {
+                force.x[i] -= F_tx / F_t * limit;
+                force.y[i] -= F_ty / F_t * limit;
+            }
+        } else {
+            // Eq. 25: F_friction = -(v_t/|v_t|) mu_d |F_n|.
+            const float magnitude = mu_d * -F_n;
+            force.x[i] -= v_tx / v_t * magnitude;
+            force.y[i] -= v_ty / v_t * magnitude;
+            contact.sliding = true;
+        }
+        if (record) body.contacts.push_back(contact);
+    }
+}
+
+void resolve_ground_contacts(SoftBody& body, const Params& world, float h) {
+    const bool verlet = world.integrator == Integrator::Verlet;
+    Vec3Array &x = body.x, &v = body.v;
+    for (const ParticleContact& c : body.contacts) {
+        const std::uint32_t i = c.particle;
+        const bool reversed = c.sliding && (v.x[i] * c.vx0 + v.y[i] * c.vy0) <= 0.0f;
+        if (c.held || reversed) {
+            // The slide ends within this step: v_t = 0, and x_t = x_t(start) + v_t h.
+            v.x[i] = 0.0f;
+            v.y[i] = 0.0f;
+            x.x[i] = c.x0;
+            x.y[i] = c.y0;
+            if (verlet) {
+                body.verlet_step.x[i] = 0.0f;
+                body.verlet_step.y[i] = 0.0f;
+            }
+        }
+    }
+    if (!world.ground) return;
+    const float ground = world.ground_height;
+    // Impacts slower than two steps of gravity are resting contact, not a bounce.
+    const float bounce_speed = 2.0f * std::abs(world.gravity.z) * h;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        if (!(x.z[i] < ground) || body.inv_mass[i] == 0.0f) continue;
+        x.z[i] = ground;
+        const float v_n = v.z[i];
+        if (v_n < -bounce_speed) v.z[i] = -world.restitution * v_n;  // v_n' = -e v_n
+        else if (v_n < 0.0f) v.z[i] = 0.0f;
+        if (verlet) body.verlet_step.set(i, v[i] * h);
+    }
+}
+
+}  // namespace softbody

@@ -1,0 +1,100 @@
+#include "integrators.h"
+
+namespace softbody {
+
+namespace {
+
+void copy(const Vec3Array& from, Vec3Array& to) {
+    to.x = from.x;
+    to.y = from.y;
+    to.z = from.z;
+}
+
+// RK4's stage s: w = h/2, h/2, h from the start; its weight in the sum: 2, 2, 1.
+float rk4_offset(int s, float h) { return s < 3 ? 0.5f * h : h; }
+float rk4_weight(int s) { return s < 3 ? 2.0f : 1.0f; }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Particles
+// ---------------------------------------------------------------------------------------------
+void verlet_start(SoftBody& body, float h) {
+    if (body.verlet_h == h) return;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) body.verlet_step.set(i, body.v[i] * h);
+    body.verlet_h = h;
+}
+
+void verlet_update(SoftBody& body, float h) {
+    const Vec3Array& a = body.accel[0];
+    const float h2 = h * h;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        // x_{n+1} = 2 x_n - x_{n-1} + a h^2 (positions);  v_{n+1} = v_n + a h (velocities).
+        // Summed as x_{n+1} = x_n + s_{n+1}, s_{n+1} = s_n + a h^2, carrying the step s
+        // itself: the same recurrence, but taking s as the difference of two rounded
+        // positions would feed their rounding back into it every step. Near rest a h^2
+        // falls below half an ulp of a position a metre from the origin (6e-8 m), and
+        // that feedback decouples x from v: a hanging mass then creeps down an ulp per
+        // tick for ever while v points up, and the dampers, fed v, hold it at the wrong
+        // stretch.
+        const Vec3 s_next = body.verlet_step[i] + a[i] * h2;
+        body.verlet_step.set(i, s_next);
+        body.x.add(i, s_next);
+        body.v.add(i, a[i] * h);
+    }
+}
+
+void symplectic_euler_update(SoftBody& body, float h) {
+    const Vec3Array& a = body.accel[0];
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        body.v.add(i, a[i] * h);       // v_{n+1} = v_n + a h
+        body.x.add(i, body.v[i] * h);  // x_{n+1} = x_n + v_{n+1} h
+    }
+}
+
+void explicit_euler_update(SoftBody& body, float h) {
+    const Vec3Array& a = body.accel[0];
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        body.x.add(i, body.v[i] * h);  // x_{n+1} = x_n + v_n h
+        body.v.add(i, a[i] * h);       // v_{n+1} = v_n + a_n h
+    }
+}
+
+// Classic Runge-Kutta on d/dt (x, v) = (v, a(x, v)):
+//   stage s: x_s = x + v_{s-1} w_s,  v_s = v + a_{s-1} w_s,  a_s = a(x_s, v_s)
+//   with w = h/2, h/2, h; then x += h/6 (v_1 + 2 v_2 + 2 v_3 + v_4), same for v with a.
+void rk4_begin(SoftBody& body) {
+    copy(body.v, body.v_stage);
+    copy(body.v, body.v_sum);
+    body.x_tmp.resize(body.particle_count());
+}
+
+void rk4_stage(SoftBody& body, int s, float h) {
+    const float w = rk4_offset(s, h);
+    const Vec3Array& a = body.accel[s - 1];
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        body.x_tmp.set(i, body.x[i] + body.v_stage[i] * w);  // uses v_{s-1}
+        body.v_stage.set(i, body.v[i] + a[i] * w);           // becomes v_s
+    }
+}
+
+void rk4_accumulate(SoftBody& body, int s) {
+    const float weight = rk4_weight(s);
+    for (std::size_t i = 0; i < body.particle_count(); ++i) body.v_sum.add(i, body.v_stage[i] * weight);
+}
+
+void rk4_finish(SoftBody& body, float h) {
+    const Vec3Array* a = body.accel;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        body.x.add(i, body.v_sum[i] * (h / 6.0f));
+        body.v.add(i, (a[0][i] + 2.0f * a[1][i] + 2.0f * a[2][i] + a[3][i]) * (h / 6.0f));
+    }
+}
+
+void hold_pins(SoftBody& body) {
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        if (body.inv_mass[i] == 0.0f) body.v.set(i, {});
+    }
+}
+
+}  // namespace softbody

@@ -1,0 +1,10 @@
+// Internal to the physics library: the stability estimate of one soft body (stability.cpp).
+#pragma once
+
+#include "physics/world.h"
+
+namespace softbody {
+
+Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps);
+
+}  // namespace softbody
