@@ -1,6 +1,10 @@
-// The renderer's read-only view of a World: spans over the physics' own arrays, nothing copied.
-// Shared by every command that draws (the window and `softbody render`).
+// The renderer's read-only view of a World: spans over the physics' own arrays for the soft
+// bodies, each rigid body's state at the last two ticks, the links and the contacts. Shared
+// by every command that draws (the window and `softbody render`).
 #pragma once
+
+#include <algorithm>
+#include <array>
 
 #include "physics/world.h"
 #include "render/frame.h"
@@ -10,23 +14,108 @@ namespace softbody::app {
 inline render::Vec3Span span_of(const Vec3Array& a) { return {a.x.data(), a.y.data(), a.z.data(), a.size()}; }
 
 // `alpha` in [0, 1]: how far from the previous tick to the latest one to draw the body.
-inline render::BodyView body_view(const World& world, float alpha = 1.0f) {
+inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f) {
     render::BodyView view;
-    view.mesh = &world.mesh();
-    view.positions = span_of(world.positions());
-    view.previous_positions = span_of(world.previous_tick_positions());
+    view.mesh = &body.mesh;
+    view.positions = span_of(body.x);
+    view.previous_positions = span_of(body.x_tick_prev);
     view.alpha = alpha;
-    view.velocities = span_of(world.velocities());
-    if (world.forces().size() == world.particle_count()) view.forces = span_of(world.forces());
-    view.rest_positions = span_of(world.rest_positions());
-    view.inverse_masses = {world.inverse_masses().data(), world.inverse_masses().size()};
+    view.velocities = span_of(body.v);
+    if (body.force.size() == body.particle_count()) view.forces = span_of(body.force);
+    view.rest_positions = span_of(body.rest);
+    view.inverse_masses = {body.inv_mass.data(), body.inv_mass.size()};
     return view;
+}
+
+// Rigid bodies' colours, sRGB: distinct from one another and from the soft bodies' orange.
+inline glm::vec3 rigid_body_color(std::size_t i) {
+    static constexpr std::array<glm::vec3, 8> kPalette{{{0.24f, 0.52f, 0.80f},
+                                                        {0.95f, 0.76f, 0.26f},
+                                                        {0.38f, 0.70f, 0.44f},
+                                                        {0.60f, 0.44f, 0.80f},
+                                                        {0.28f, 0.70f, 0.70f},
+                                                        {0.86f, 0.52f, 0.64f},
+                                                        {0.56f, 0.60f, 0.34f},
+                                                        {0.74f, 0.40f, 0.30f}}};
+    return kPalette[i % kPalette.size()];
+}
+
+inline glm::vec3 to_glm(const Vec3d& v) { return {float(v.x), float(v.y), float(v.z)}; }
+
+inline render::RigidBodyView rigid_body_view(const World& world, std::size_t i, float alpha = 1.0f) {
+    const RigidBody& body = world.rigid_body(i);
+    const double* now = world.rigid_state(i);
+    const double* before = world.rigid_previous_state(i);
+    const RigidMotion m = world.rigid_motion(i);
+    render::RigidBodyView view;
+    view.mesh = &body.render_mesh;
+    view.position = {float(now[rigid::X]), float(now[rigid::X + 1]), float(now[rigid::X + 2])};
+    view.previous_position = {float(before[rigid::X]), float(before[rigid::X + 1]), float(before[rigid::X + 2])};
+    view.orientation = {float(now[rigid::Q]), float(now[rigid::Q + 1]), float(now[rigid::Q + 2]), float(now[rigid::Q + 3])};
+    view.previous_orientation = {float(before[rigid::Q]), float(before[rigid::Q + 1]), float(before[rigid::Q + 2]),
+                                 float(before[rigid::Q + 3])};
+    view.alpha = alpha;
+    view.color = rigid_body_color(i);
+    view.radius = float(body.bounding_radius);
+    view.mass = float(body.mass);
+    view.fixed = body.fixed;
+    view.velocity = to_glm(m.v);
+    view.angular_velocity = to_glm(m.omega);
+    view.angular_momentum = to_glm(m.L);
+    return view;
+}
+
+// Every body of the world, its links and its last contacts, into `frame`.
+inline void world_view(const World& world, float alpha, render::Frame& frame) {
+    frame.soft_bodies.clear();
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) frame.soft_bodies.push_back(soft_body_view(world.soft_body(b), alpha));
+    frame.rigid_bodies.clear();
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) frame.rigid_bodies.push_back(rigid_body_view(world, b, alpha));
+    frame.links.clear();
+    for (const Link& link : world.links()) {
+        frame.links.push_back({to_glm(world.link_end_position(link.a)), to_glm(world.link_end_position(link.b)), float(link.l0)});
+    }
+    frame.contacts.clear();
+    for (const RigidContact& c : world.contacts()) frame.contacts.push_back({to_glm(c.point), to_glm(c.normal), float(c.normal_impulse)});
 }
 
 // How the renderer's ground matches the physics' ground.
 inline void match_ground(const Params& params, render::Appearance& look) {
     look.ground = params.ground;
     look.ground_height = params.ground_height;
+}
+
+// A sphere holding every body as it is now: the first soft body's centre of mass and reach
+// when it is alone (as the demo has always framed it), else the bounding spheres of all.
+struct WorldBounds {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;
+};
+inline WorldBounds world_bounds(const World& world) {
+    WorldBounds bounds;
+    if (world.soft_body_count() == 1 && world.rigid_body_count() == 0) {
+        const Vec3 c = world.center_of_mass();
+        for (std::size_t i = 0; i < world.particle_count(); ++i) bounds.radius = std::max(bounds.radius, length(world.positions()[i] - c));
+        bounds.centre = {c.x, c.y, c.z};
+        return bounds;
+    }
+    glm::vec3 low(0.0f), high(0.0f);
+    bool first = true;
+    const auto add = [&](const glm::vec3& c, float r) {
+        low = first ? c - r : glm::min(low, c - r);
+        high = first ? c + r : glm::max(high, c + r);
+        first = false;
+    };
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+        const Vec3Array& x = world.soft_body(b).x;
+        for (std::size_t i = 0; i < x.size(); ++i) add({x.x[i], x.y[i], x.z[i]}, 0.0f);
+    }
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
+        add(to_glm(world.rigid_motion(b).x), float(world.rigid_body(b).bounding_radius));
+    }
+    bounds.centre = 0.5f * (low + high);
+    bounds.radius = 0.5f * glm::length(high - low);
+    return bounds;
 }
 
 }  // namespace softbody::app

@@ -70,19 +70,22 @@ bool SceneOptions::take(Args& args) {
     return true;
 }
 
-Params SceneOptions::resolve() const {
-    Params params;
-    if (!scene.empty()) params = load_scene(scene);
-    else if (mesh.empty()) params = load_scene(default_scene_path());
-    if (!mesh.empty()) params.mesh = mesh;
-    for (const auto& [key, value] : sets) set_param(params, key, value);
-    if (params.mesh.empty()) throw InputError("no mesh: give --mesh FILE, or a scene file with a \"mesh\" key");
-    return params;
+Scene SceneOptions::resolve() const {
+    Scene resolved;
+    if (!scene.empty()) resolved = load_scene(scene);
+    else if (mesh.empty()) resolved = load_scene(default_scene_path());
+    if (!mesh.empty()) resolved.params.mesh = mesh;
+    for (const auto& [key, value] : sets) set_scene_key(resolved, key, value);
+    if (resolved.empty()) {
+        throw InputError("nothing to simulate: give --mesh FILE, or a scene file with a \"mesh\", \"soft_bodies\" or "
+                         "\"rigid_bodies\"");
+    }
+    return resolved;
 }
 
-std::string SceneOptions::name(const Params& params) const {
+std::string SceneOptions::name(const Scene& resolved) const {
     if (!scene.empty()) return std::filesystem::path(scene).stem().string();
-    if (!mesh.empty()) return std::filesystem::path(params.mesh).stem().string();
+    if (!mesh.empty()) return std::filesystem::path(resolved.params.mesh).stem().string();
     return "default";
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/params.h"
+#include "physics/scene_io.h"
 
 namespace softbody::app {
 
@@ -36,8 +37,9 @@ private:
 double parse_double(std::string_view option, std::string_view text, double min, double max);
 std::int64_t parse_int(std::string_view option, std::string_view text, std::int64_t min, std::int64_t max);
 
-// --scene FILE, --mesh FILE and --set KEY=VALUE, applied in that order whatever their order
-// on the command line (the scene is the base, --mesh and --set override it).
+// --scene FILE, --mesh FILE and --set KEY=VALUE (or NAME.KEY=VALUE for a named body), applied
+// in that order whatever their order on the command line (the scene is the base, --mesh and
+// --set override it).
 struct SceneOptions {
     std::string scene;
     std::string mesh;
@@ -45,10 +47,10 @@ struct SceneOptions {
 
     // Consumes the option at args.peek() if it is one of ours; returns false otherwise.
     bool take(Args& args);
-    // Builds the params: the default scene when neither --scene nor --mesh is given.
-    Params resolve() const;
+    // Builds the scene: the default scene when neither --scene nor --mesh is given.
+    Scene resolve() const;
     // Name for output files: the scene's file stem, else the mesh's.
-    std::string name(const Params& params) const;
+    std::string name(const Scene& scene) const;
 };
 
 // Folder of the bundled assets (meshes and scenes), fixed at build time.

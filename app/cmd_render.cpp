@@ -172,13 +172,12 @@ std::string hex(std::uint64_t value) {
     return text;
 }
 
-// The sphere to keep in view: the body now, and where it will land on the floor below.
+// The sphere to keep in view: the bodies now, and where they will land on the floor below.
 void frame_body(const World& world, const Params& params, float aspect, render::Camera& camera, float zoom) {
-    const Vec3 c = world.center_of_mass();
-    float r = 0.0f;
-    for (std::size_t i = 0; i < world.particle_count(); ++i) r = std::max(r, length(world.positions()[i] - c));
-    r = std::max(r, 1e-3f);
-    glm::vec3 centre(c.x, c.y, c.z);
+    const WorldBounds bounds = world_bounds(world);
+    const glm::vec3 c = bounds.centre;
+    const float r = std::max(bounds.radius, 1e-3f);
+    glm::vec3 centre = c;
     float radius = r;
     if (!params.pinned.empty()) {
         // A pinned body hangs: room below it for the sag, not the whole way to the floor.
@@ -274,9 +273,11 @@ int render_command(int argc, char** argv) {
     times.erase(std::unique(times.begin(), times.end()), times.end());
 
     // Inputs first (cheap, and the user's most likely mistakes), then the output folder, then GL.
-    const Params params = scene.resolve();
-    World world(params, load_mesh(params.mesh), WorldOptions{threads, false});
-    const std::string name = scene.name(params);
+    const Scene resolved = scene.resolve();
+    const Params& params = resolved.params;
+    World world(make_world_def(resolved), WorldOptions{threads, false});
+    for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
+    const std::string name = scene.name(resolved);
     for (std::size_t i = 1; i < times.size() && sequence_frames == 0; ++i) {
         if (time_label(times[i]) == time_label(times[i - 1])) {
             throw UsageError("--at: " + std::to_string(times[i - 1]) + " and " + std::to_string(times[i]) +
@@ -327,7 +328,7 @@ int render_command(int argc, char** argv) {
             std::cerr << "softbody: the simulation diverged before t = " << t << " s: " << world.divergence() << "\n";
             return kDiverged;
         }
-        frame.body = body_view(world, alpha);
+        world_view(world, alpha, frame);
         if (camera_options.follow) {
             frame_body(world, params, aspect, frame.camera, camera_options.zoom);
             fix_camera();
@@ -404,8 +405,9 @@ int render_bench(int argc, char** argv) {
         Vec3Array x;
         x.resize(n);
         render::Frame frame;
-        frame.body.mesh = &mesh;
-        frame.body.positions = span_of(x);
+        frame.soft_bodies.resize(1);
+        frame.soft_bodies[0].mesh = &mesh;
+        frame.soft_bodies[0].positions = span_of(x);
         frame.camera.frame({0.0f, 0.0f, 0.5f}, 0.8f, aspect);
         std::vector<double> surface, stream, total;
         for (int f = -10; f < frames; ++f) {
@@ -430,11 +432,12 @@ int render_bench(int argc, char** argv) {
 
     // The default scene as `softbody render` draws it, and what writing the PNG adds.
     SceneOptions scene;
-    const Params params = scene.resolve();
-    World world(params, load_mesh(params.mesh));
+    const Scene resolved = scene.resolve();
+    const Params& params = resolved.params;
+    World world(make_world_def(resolved));
     world.run(30);
     render::Frame frame;
-    frame.body = body_view(world);
+    world_view(world, 1.0f, frame);
     match_ground(params, frame.appearance);
     frame_body(world, params, aspect, frame.camera, 1.0f);
     std::vector<double> total, png;

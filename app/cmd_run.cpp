@@ -111,17 +111,18 @@ int run_command(int argc, char** argv, int first) {
 
     // A scene that cannot load is shown as an error over the default scene, not a dead window.
     std::string first_error;
-    Params params;
+    Scene resolved;
     try {
-        params = scene.resolve();
+        resolved = scene.resolve();
     } catch (const InputError& e) {
         first_error = e.what();
-        params = load_scene(default_scene_path());
+        resolved = load_scene(default_scene_path());
     }
     std::unique_ptr<Demo> demo;
     try {
-        demo = std::make_unique<Demo>(params);
-        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? params.mesh : default_scene_path());
+        demo = std::make_unique<Demo>(resolved);
+        for (const std::string& note : demo->world().notes()) std::cerr << "softbody: note: " << note << "\n";
+        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? resolved.params.mesh : default_scene_path());
     } catch (const InputError& e) {
         first_error = e.what();
         demo = std::make_unique<Demo>(load_scene(default_scene_path()));
@@ -199,11 +200,13 @@ int run_command(int argc, char** argv, int first) {
     const Vec3 com = world.center_of_mass();
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016" PRIx64, world.state_hash());
+    const bool soft = world.soft_body_count() > 0;
     nlohmann::ordered_json out = {
-        {"mesh", world.mesh().source}, {"particles", world.particle_count()}, {"ticks", world.ticks()},
+        {"mesh", soft ? world.mesh().source : ""}, {"particles", soft ? world.particle_count() : 0}, {"ticks", world.ticks()},
         {"sim_time", world.time()},   {"com", {com.x, com.y, com.z}},       {"status", world.status() == Status::Ok ? "ok" : "diverged"},
         {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
-        {"params", nlohmann::json::parse(scene_to_json(world.params()))},
+        {"rigid_bodies", world.rigid_body_count()},
+        {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
     // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.
     const ResidentMemory end = resident_memory();

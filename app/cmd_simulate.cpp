@@ -19,24 +19,44 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
-    "                         [--dump FILE.csv] [--dump-every K] [--threads N]";
+    "                         [--dump FILE.csv] [--dump-bodies FILE.csv] [--dump-every K] [--threads N]\n"
+    "  --set NAME.KEY=VALUE sets a named body's key (plank.mass=7)";
 
-// CSV writer for --dump; reports a failed write (a full disk) instead of losing data quietly.
+// CSV writer for --dump (particles) and --dump-bodies (rigid bodies); reports a failed write
+// (a full disk) instead of losing data quietly.
 class Dump {
 public:
-    explicit Dump(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "w")) {
+    enum class Kind { Particles, RigidBodies };
+    Dump(const std::string& path, Kind kind) : path_(path), kind_(kind), file_(std::fopen(path.c_str(), "w")) {
         if (!file_) throw InputError(path + ": cannot write the dump file");
-        std::fputs("tick,time,particle,x,y,z,vx,vy,vz\n", file_);
+        std::fputs(kind == Kind::Particles ? "tick,time,particle,x,y,z,vx,vy,vz\n"
+                                           : "tick,time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Lx,Ly,Lz\n",
+                   file_);
     }
     ~Dump() {
         if (file_) std::fclose(file_);
     }
     void write(const World& world) {
-        const auto& x = world.positions();
-        const auto& v = world.velocities();
-        for (std::size_t i = 0; i < world.particle_count(); ++i) {
-            std::fprintf(file_, "%" PRIu64 ",%.9g,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", world.ticks(), world.time(), i,
-                         x.x[i], x.y[i], x.z[i], v.x[i], v.y[i], v.z[i]);
+        if (kind_ == Kind::Particles) {
+            // Every soft body's particles, numbered on from one body to the next.
+            std::size_t number = 0;
+            for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+                const auto& x = world.soft_body(b).x;
+                const auto& v = world.soft_body(b).v;
+                for (std::size_t i = 0; i < x.size(); ++i, ++number) {
+                    std::fprintf(file_, "%" PRIu64 ",%.9g,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", world.ticks(), world.time(),
+                                 number, x.x[i], x.y[i], x.z[i], v.x[i], v.y[i], v.z[i]);
+                }
+            }
+        } else {
+            for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
+                const RigidMotion m = world.rigid_motion(b);
+                std::fprintf(file_,
+                             "%" PRIu64 ",%.9g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,"
+                             "%.12g,%.12g,%.12g\n",
+                             world.ticks(), world.time(), world.rigid_body(b).name.c_str(), m.x.x, m.x.y, m.x.z, m.q.w, m.q.x,
+                             m.q.y, m.q.z, m.v.x, m.v.y, m.v.z, m.omega.x, m.omega.y, m.omega.z, m.L.x, m.L.y, m.L.z);
+            }
         }
         if (std::ferror(file_)) throw InputError(path_ + ": writing the dump failed");
     }
@@ -48,8 +68,31 @@ public:
 
 private:
     std::string path_;
+    Kind kind_;
     std::FILE* file_;
 };
+
+nlohmann::ordered_json vec(const Vec3d& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::ordered_json rigid_body_json(const World& world, std::size_t b) {
+    const RigidBody& body = world.rigid_body(b);
+    const RigidMotion m = world.rigid_motion(b);
+    const Mat3 J = m.R * body.J_body * m.R.transposed();  // Eq. 32, world axes
+    nlohmann::ordered_json inertia = nlohmann::ordered_json::array();
+    for (int i = 0; i < 3; ++i) inertia.push_back({J.m[i][0], J.m[i][1], J.m[i][2]});
+    const double kinetic = body.fixed ? 0.0 : 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
+    return {{"name", body.name},
+            {"shape", std::string(to_string(body.shape))},
+            {"mass", body.mass},
+            {"fixed", body.fixed},
+            {"position", vec(m.x)},
+            {"orientation", {m.q.w, m.q.x, m.q.y, m.q.z}},
+            {"velocity", vec(m.v)},
+            {"angular_velocity", vec(m.omega)},
+            {"angular_momentum", vec(m.L)},
+            {"inertia", inertia},
+            {"kinetic_energy", kinetic}};
+}
 
 }  // namespace
 
@@ -58,7 +101,7 @@ int simulate_command(int argc, char** argv) {
     SceneOptions scene;
     std::int64_t ticks = -1;
     double seconds = -1.0;
-    std::string dump_path;
+    std::string dump_path, dump_bodies_path;
     std::int64_t dump_every = 1;
     int threads = hardware_threads();
     while (!args.done()) {
@@ -67,6 +110,7 @@ int simulate_command(int argc, char** argv) {
         if (option == "--ticks") ticks = parse_int(option, args.value(option), 0, 1'000'000'000);
         else if (option == "--seconds") seconds = parse_double(option, args.value(option), 0.0, 1e7);
         else if (option == "--dump") dump_path = args.value(option);
+        else if (option == "--dump-bodies") dump_bodies_path = args.value(option);
         else if (option == "--dump-every") dump_every = parse_int(option, args.value(option), 1, 1'000'000'000);
         else if (option == "--threads") threads = static_cast<int>(parse_int(option, args.value(option), 1, 256));
         else if (option == "--help" || option == "-h") {
@@ -78,24 +122,25 @@ int simulate_command(int argc, char** argv) {
     }
     if ((ticks < 0) == (seconds < 0.0)) throw UsageError(std::string("give exactly one of --seconds or --ticks\n") + kUsage);
 
-    const Params params = scene.resolve();
-    World world(params, load_mesh(params.mesh), WorldOptions{threads, false});
+    const Scene resolved = scene.resolve();
+    const Params& params = resolved.params;
+    World world(make_world_def(resolved), WorldOptions{threads, false});
+    for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
     if (seconds >= 0.0) ticks = std::llround(seconds / double(params.dt));
 
-    std::unique_ptr<Dump> dump;
-    if (!dump_path.empty()) {
-        dump = std::make_unique<Dump>(dump_path);
-        dump->write(world);
-    }
+    std::vector<std::unique_ptr<Dump>> dumps;
+    if (!dump_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_path, Dump::Kind::Particles));
+    if (!dump_bodies_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_bodies_path, Dump::Kind::RigidBodies));
+    for (auto& dump : dumps) dump->write(world);
     const auto start = std::chrono::steady_clock::now();
     for (std::int64_t t = 0; t < ticks && world.status() == Status::Ok; ++t) {
         world.tick();
-        if (dump && world.status() == Status::Ok && world.ticks() % static_cast<std::uint64_t>(dump_every) == 0) {
-            dump->write(world);
+        if (world.status() == Status::Ok && world.ticks() % static_cast<std::uint64_t>(dump_every) == 0) {
+            for (auto& dump : dumps) dump->write(world);
         }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (dump) dump->close();
+    for (auto& dump : dumps) dump->close();
 
     const Energy e = world.energy();
     const Stability s = world.stability();
@@ -103,17 +148,23 @@ int simulate_command(int argc, char** argv) {
     const bool ok = world.status() == Status::Ok;
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016" PRIx64, world.state_hash());
+    std::size_t particles = 0, springs = 0;
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+        particles += world.soft_body(b).particle_count();
+        springs += world.soft_body(b).spring_count();
+    }
     nlohmann::ordered_json out = {
         {"mesh", params.mesh},
-        {"particles", world.particle_count()},
-        {"springs", world.spring_count()},
+        {"particles", particles},
+        {"springs", springs},
         {"ticks", world.ticks()},
         {"sim_time", world.time()},
         {"wall_time", wall},
         {"threads", world.threads()},
         {"integrator", to_string(params.integrator)},
         {"substeps", s.substeps},
-        {"energy", {{"kinetic", e.kinetic}, {"gravity", e.gravity}, {"elastic", e.elastic}, {"total", e.total()}}},
+        {"energy",
+         {{"kinetic", e.kinetic}, {"rotational", e.rotational}, {"gravity", e.gravity}, {"elastic", e.elastic}, {"total", e.total()}}},
         {"com", {com.x, com.y, com.z}},
         {"min_z", world.min_z()},
         {"stability", s.h_omega},
@@ -123,6 +174,13 @@ int simulate_command(int argc, char** argv) {
         {"status", ok ? "ok" : "diverged"},
         {"state_hash", hash},
     };
+    if (world.rigid_body_count() > 0) {
+        nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+        for (std::size_t b = 0; b < world.rigid_body_count(); ++b) bodies.push_back(rigid_body_json(world, b));
+        out["rigid_bodies"] = bodies;
+    }
+    out["momentum"] = vec(world.momentum());
+    out["angular_momentum"] = vec(world.angular_momentum());
     if (!ok) out["reason"] = world.divergence();
     // A file name need not be UTF-8: its odd bytes are replaced in the summary, not fatal.
     std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;

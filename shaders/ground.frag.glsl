@@ -1,15 +1,17 @@
 #version 330 core
 // The ground: a light floor with a metre grid (finer lines in between), lit by the sun with
-// the body's soft shadow, darkened under the body by a contact term, and fading into the haze
-// of the horizon with distance.
+// the bodies' soft shadows, darkened under each body by a contact term, and fading into the
+// haze of the horizon with distance.
 #include "lighting.glsl"
 
 uniform vec3 u_floor_color;      // sRGB
 uniform float u_grid_major;      // m between major lines
 uniform float u_fog_distance;    // m: the floor is mostly haze this far from the eye
-// The body as an ellipsoid (centre and semi-axes, m): its occlusion of the sky over the floor.
-uniform vec3 u_occluder_centre;
-uniform vec3 u_occluder_axes;
+// Each body as an ellipsoid (centre and semi-axes, m): its occlusion of the sky over the floor.
+const int kMaxOccluders = 16;
+uniform int u_occluder_count;
+uniform vec3 u_occluder_centre[kMaxOccluders];
+uniform vec3 u_occluder_axes[kMaxOccluders];
 uniform float u_occlusion;       // 0 without a body
 
 in vec3 v_world;
@@ -27,13 +29,17 @@ float grid(vec2 p, float spacing, float width_px) {
 }
 
 // Sky occlusion by a unit sphere seen from a point below it, in the ellipsoid's own
-// coordinates: cos(angle to the centre) * (radius / distance)^2.
+// coordinates: cos(angle to the centre) * (radius / distance)^2, summed over the bodies.
 float body_occlusion(vec3 p) {
     if (u_occlusion <= 0.0) return 0.0;
-    vec3 q = (p - u_occluder_centre) / u_occluder_axes;
-    float d2 = max(dot(q, q), 1.0);
-    float cos_angle = clamp(-q.z * inversesqrt(d2), 0.0, 1.0);
-    return u_occlusion * cos_angle / d2;
+    float total = 0.0;
+    for (int i = 0; i < u_occluder_count; ++i) {
+        vec3 q = (p - u_occluder_centre[i]) / u_occluder_axes[i];
+        float d2 = max(dot(q, q), 1.0);
+        float cos_angle = clamp(-q.z * inversesqrt(d2), 0.0, 1.0);
+        total += u_occlusion * cos_angle / d2;
+    }
+    return min(total, 0.9);
 }
 
 void main() {

@@ -34,16 +34,16 @@ void mouse_ray(const render::Camera& camera, float x, float y, float width, floa
 
 }  // namespace
 
-Demo::Demo(const Params& params) : clock_(params.dt) {
-    world_ = std::make_unique<World>(params, load_mesh(params.mesh), WorldOptions{hardware_threads(), false});
-    after_load(params);
+Demo::Demo(const Scene& scene) : clock_(scene.params.dt) {
+    world_ = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+    after_load(scene);
 }
 
-bool Demo::load(const Params& params) {
+bool Demo::load(const Scene& scene) {
     try {
-        auto world = std::make_unique<World>(params, load_mesh(params.mesh), WorldOptions{hardware_threads(), false});
+        auto world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
         world_ = std::move(world);
-        after_load(params);
+        after_load(scene);
         error_.clear();
         return true;
     } catch (const std::exception& e) {
@@ -52,19 +52,20 @@ bool Demo::load(const Params& params) {
     }
 }
 
-void Demo::after_load(const Params& params) {
-    built_with_ = params;
-    clock_ = FixedClock(params.dt, max_ticks_per_frame);
+void Demo::after_load(const Scene& scene) {
+    scene_ = scene;
+    built_rigid_bodies_ = scene.rigid_bodies;
+    clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
     energy_.clear();
-    match_ground(params, appearance);
+    match_ground(scene.params, appearance);
     frame_body();
     sample_energy();
 }
 
 bool Demo::load_scene_file(const std::string& path) {
     try {
-        const Params params = load_scene(path);
-        if (!load(params)) return false;
+        const Scene scene = load_scene(path);
+        if (!load(scene)) return false;
         source_ = path;
         return true;
     } catch (const std::exception& e) {
@@ -74,17 +75,23 @@ bool Demo::load_scene_file(const std::string& path) {
 }
 
 bool Demo::load_mesh_file(const std::string& path) {
-    Params params = world_->params();
-    params.mesh = path;
-    params.pinned.clear();  // vertex numbers of another mesh mean nothing here
-    if (!load(params)) return false;
+    Scene scene = this->scene();
+    scene.params.mesh = path;
+    scene.params.pinned.clear();  // vertex numbers of another mesh mean nothing here
+    if (!load(scene)) return false;
     source_ = path;
     return true;
 }
 
+Scene Demo::scene() const {
+    Scene scene = scene_;
+    scene.params = world_->params();
+    return scene;
+}
+
 bool Demo::save_preset(const std::string& path, bool overwrite) {
     try {
-        save_scene(path, world_->params(), overwrite ? Overwrite::Yes : Overwrite::No);
+        save_scene(path, scene(), overwrite ? Overwrite::Yes : Overwrite::No);
         return true;
     } catch (const std::exception& e) {
         error_ = e.what();
@@ -93,8 +100,15 @@ bool Demo::save_preset(const std::string& path, bool overwrite) {
 }
 
 void Demo::reset() {
+    if (scene_.rigid_bodies != built_rigid_bodies_) {
+        // Rigid bodies' keys that apply at reset: the world is made again from the scene.
+        const Scene scene = this->scene();
+        const std::string source = source_;
+        if (load(scene)) source_ = source;
+        return;
+    }
     world_->reset();
-    built_with_ = world_->params();
+    scene_.params = world_->params();
     clock_.reset();
     energy_.clear();
     sample_energy();
@@ -110,11 +124,23 @@ void Demo::edit(const Params& params) {
     }
 }
 
+void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
+    if (index >= scene_.rigid_bodies.size()) return;
+    try {
+        (void)make_rigid_body(def);  // refuse now what the reset would refuse
+        scene_.rigid_bodies[index] = def;
+        world_->set_rigid_material(index, def.restitution, def.friction);
+    } catch (const std::exception& e) {
+        error_ = e.what();
+    }
+}
+
 bool Demo::reset_pending() const {
     const Params& now = world_->params();
-    return now.scale != built_with_.scale || now.init_height != built_with_.init_height ||
-           !(now.rotation == built_with_.rotation) ||
-           !(now.initial_velocity == built_with_.initial_velocity) || now.pinned != built_with_.pinned;
+    const Params& built = scene_.params;
+    return now.scale != built.scale || now.init_height != built.init_height || !(now.rotation == built.rotation) ||
+           !(now.initial_velocity == built.initial_velocity) || now.pinned != built.pinned ||
+           scene_.rigid_bodies != built_rigid_bodies_;
 }
 
 void Demo::advance(double wall_seconds) {
@@ -149,18 +175,17 @@ void Demo::single_tick() {
 
 void Demo::sample_energy() {
     const Energy e = world_->energy();
-    energy_.push_back({world_->time(), e.kinetic, e.gravity, e.elastic, e.total()});
+    energy_.push_back({world_->time(), e.kinetic, e.gravity, e.elastic, e.total(), e.rotational,
+                       length(world_->angular_momentum())});
     while (energy_.size() > kEnergySamples) energy_.pop_front();
 }
 
 void Demo::frame_body() {
     const float aspect = view_aspect_, shift = view_shift_;
-    // Frame the body and the ground below it, so the whole fall is in view.
-    const Vec3 com = world_->center_of_mass();
-    float radius = 0.0f;
-    const auto& x = world_->positions();
-    for (std::size_t i = 0; i < world_->particle_count(); ++i) radius = std::max(radius, length(x[i] - com));
-    radius = std::max(radius, 0.25f);
+    // Frame the bodies and the ground below them, so the whole fall is in view.
+    const WorldBounds bounds = world_bounds(*world_);
+    const glm::vec3 com = bounds.centre;
+    const float radius = std::max(bounds.radius, 0.25f);
     const float ground = params().ground_height;
     const float bottom = params().ground ? std::min(ground, com.z - radius) : com.z - radius;
     const float top = com.z + radius;
@@ -173,42 +198,108 @@ void Demo::frame_body() {
 render::Frame Demo::make_frame() const {
     render::Frame frame;
     const World& w = *world_;
-    frame.body = body_view(w, paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha()));
+    world_view(w, paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha()), frame);
     frame.camera = camera;
     frame.overlays = overlays;
     frame.appearance = appearance;
     if (const auto& grab = w.grab()) {
         frame.overlays.grab = true;
-        frame.overlays.grab_particle = grab->particle;
         frame.overlays.grab_target = to_glm(grab->target);
+        if (grab->rigid) {
+            const RigidMotion m = w.rigid_motion(grab->body);
+            frame.overlays.grab_on_rigid = true;
+            frame.overlays.grab_point = to_glm(m.x + m.R * grab->point);
+        } else {
+            frame.overlays.grab_particle = grab->particle;
+        }
     }
     return frame;
 }
 
-std::optional<std::uint32_t> Demo::pick(float x, float y, float width, float height, float radius) const {
+namespace {
+
+// Where a ray first meets a mesh's triangles (Moller-Trumbore), as a distance along it; none
+// when it misses.
+std::optional<float> ray_mesh(const Mesh& mesh, const glm::vec3& origin, const glm::vec3& direction) {
+    std::optional<float> nearest;
+    for (std::size_t k = 0; k + 2 < mesh.triangles.size(); k += 3) {
+        const Vec3 a = mesh.positions[mesh.render_vertices[mesh.triangles[k]].particle];
+        const Vec3 b = mesh.positions[mesh.render_vertices[mesh.triangles[k + 1]].particle];
+        const Vec3 c = mesh.positions[mesh.render_vertices[mesh.triangles[k + 2]].particle];
+        const glm::vec3 p0 = to_glm(a), e1 = to_glm(b) - p0, e2 = to_glm(c) - p0;
+        const glm::vec3 h = glm::cross(direction, e2);
+        const float det = glm::dot(e1, h);
+        if (std::abs(det) < 1e-12f) continue;
+        const glm::vec3 s = origin - p0;
+        const float u = glm::dot(s, h) / det;
+        if (u < 0.0f || u > 1.0f) continue;
+        const glm::vec3 q = glm::cross(s, e1);
+        const float v = glm::dot(direction, q) / det;
+        if (v < 0.0f || u + v > 1.0f) continue;
+        const float t = glm::dot(e2, q) / det;
+        if (t > 0.0f && (!nearest || t < *nearest)) nearest = t;
+    }
+    return nearest;
+}
+
+}  // namespace
+
+std::optional<Pick> Demo::pick(float x, float y, float width, float height, float radius) const {
     const glm::mat4 clip = camera.projection(width / height) * camera.view();
-    const auto& p = world_->positions();
-    std::optional<std::uint32_t> best;
-    float best_depth = 0.0f;
-    for (std::size_t i = 0; i < world_->particle_count(); ++i) {
-        const glm::vec4 c = clip * glm::vec4(to_glm(p[i]), 1.0f);
-        if (c.w <= 0.0f) continue;
-        const float sx = (c.x / c.w * 0.5f + 0.5f) * width, sy = (0.5f - c.y / c.w * 0.5f) * height;
-        const float d2 = (sx - x) * (sx - x) + (sy - y) * (sy - y);
-        if (d2 > radius * radius) continue;
-        // Within reach: the nearest to the eye wins (it is the one drawn in front).
-        if (!best || c.w < best_depth) {
-            best = static_cast<std::uint32_t>(i);
-            best_depth = c.w;
+    std::optional<Pick> best;
+    if (world_->soft_body_count() > 0) {
+        const auto& p = world_->positions();
+        for (std::size_t i = 0; i < world_->particle_count(); ++i) {
+            const glm::vec4 c = clip * glm::vec4(to_glm(p[i]), 1.0f);
+            if (c.w <= 0.0f) continue;
+            const float sx = (c.x / c.w * 0.5f + 0.5f) * width, sy = (0.5f - c.y / c.w * 0.5f) * height;
+            const float d2 = (sx - x) * (sx - x) + (sy - y) * (sy - y);
+            if (d2 > radius * radius) continue;
+            // Within reach: the nearest to the eye wins (it is the one drawn in front).
+            if (!best || c.w < best->depth) {
+                best = Pick{false, 0, static_cast<std::uint32_t>(i), {}, c.w};
+            }
+        }
+    }
+    // Rigid bodies: the ray against each body's own mesh, in its own axes.
+    glm::vec3 origin, direction;
+    mouse_ray(camera, x, y, width, height, origin, direction);
+    for (std::size_t b = 0; b < world_->rigid_body_count(); ++b) {
+        if (world_->rigid_body(b).fixed) continue;
+        const glm::mat4 model = render::model_matrix(rigid_body_view(*world_, b));
+        const glm::mat4 to_body = glm::inverse(model);
+        const glm::vec3 o(to_body * glm::vec4(origin, 1.0f));
+        const glm::vec3 d(to_body * glm::vec4(direction, 0.0f));
+        const auto t = ray_mesh(world_->rigid_body(b).render_mesh, o, d);
+        if (!t) continue;
+        // The map to body axes is affine, so one distance t serves both rays.
+        const glm::vec3 hit_world = origin + direction * *t;
+        const glm::vec3 hit_body = o + d * *t;
+        const float depth = glm::dot(hit_world - camera.eye(), camera.forward());
+        if (!best || depth < best->depth) {
+            best = Pick{true, static_cast<std::uint32_t>(b), 0, Vec3d{hit_body.x, hit_body.y, hit_body.z}, depth};
         }
     }
     return best;
 }
 
-void Demo::begin_grab(std::uint32_t particle, float x, float y, float width, float height) {
-    const glm::vec3 at = to_glm(world_->positions()[particle]);
+void Demo::begin_grab(const Pick& pick, float x, float y, float width, float height) {
+    Grab grab;
+    glm::vec3 at;
+    if (pick.rigid) {
+        const RigidMotion m = world_->rigid_motion(pick.body);
+        const Vec3d p = m.x + m.R * pick.point;
+        at = to_glm(p);
+        grab.rigid = true;
+        grab.body = pick.body;
+        grab.point = pick.point;
+    } else {
+        at = to_glm(world_->positions()[pick.particle]);
+        grab.particle = pick.particle;
+    }
     grab_depth_ = glm::dot(at - camera.eye(), camera.forward());
-    world_->set_grab(Grab{particle, world_->positions()[particle], 0.0f, 0});
+    grab.target = {at.x, at.y, at.z};
+    world_->set_grab(grab);
     drag(x, y, width, height);
 }
 
@@ -239,7 +330,7 @@ void Demo::toggle_pin(std::uint32_t particle) {
         params.pinned.push_back(static_cast<std::uint32_t>(vertex));
     }
     world_->set_params(params);
-    built_with_.pinned = params.pinned;
+    scene_.params.pinned = params.pinned;
     world_->set_pinned(particle, pin);
 }
 

@@ -11,6 +11,7 @@
 
 #include "physics/clock.h"
 #include "physics/params.h"
+#include "physics/scene_io.h"
 #include "physics/world.h"
 #include "render/frame.h"
 
@@ -18,15 +19,26 @@ namespace softbody::app {
 
 struct EnergySample {
     double time, kinetic, gravity, elastic, total;
+    double rotational;        // the rigid bodies' part of the kinetic energy
+    double angular_momentum;  // |L| about the origin, every body
+};
+
+// What the mouse is over: a particle of a soft body, or a point on a rigid body.
+struct Pick {
+    bool rigid = false;
+    std::uint32_t body = 0;      // soft or rigid body index
+    std::uint32_t particle = 0;  // soft
+    Vec3d point;                 // rigid: body axes from the centre of mass
+    float depth = 0.0f;          // along the view, m: the nearest pick wins
 };
 
 class Demo {
 public:
     // Builds the first world; throws InputError when it cannot (the caller has nothing to show).
-    explicit Demo(const Params& params);
+    explicit Demo(const Scene& scene);
 
     // --- Loading: never throws; on failure the current world stays and error() says why ----
-    bool load(const Params& params);           // a whole new set of parameters (and mesh)
+    bool load(const Scene& scene);             // a whole new scene
     bool load_scene_file(const std::string& path);
     bool load_mesh_file(const std::string& path);
     bool save_preset(const std::string& path, bool overwrite);  // false + error() on failure
@@ -35,7 +47,11 @@ public:
     // Parameter edits from the UI: live keys apply now, the others at reset (see params.h).
     void edit(const Params& params);
     const Params& params() const { return world_->params(); }
-    bool reset_pending() const;  // a non-live key differs from what the body was built with
+    // A rigid body's keys: restitution and friction apply now, the rest at reset.
+    void edit_rigid_body(std::size_t index, const RigidBodyDef& def);
+    // The scene as it stands: what a preset saves (the current params, every body).
+    Scene scene() const;
+    bool reset_pending() const;  // a key that applies at reset differs from what the world was built with
 
     // --- Time ----------------------------------------------------------------------------------
     // Feeds elapsed wall time (times time_scale) to the clock and runs the whole ticks due.
@@ -73,20 +89,23 @@ public:
     render::Frame make_frame() const;
 
     // --- Mouse ---------------------------------------------------------------------------------
-    // The particle drawn nearest to pixel (x, y) of a width x height view, within `radius` px.
-    std::optional<std::uint32_t> pick(float x, float y, float width, float height, float radius) const;
-    void begin_grab(std::uint32_t particle, float x, float y, float width, float height);
+    // What is under pixel (x, y) of a width x height view: the first soft body's particle drawn
+    // nearest, within `radius` px, or the point of a rigid body's surface the ray meets first,
+    // whichever is nearer the eye.
+    std::optional<Pick> pick(float x, float y, float width, float height, float radius) const;
+    void begin_grab(const Pick& pick, float x, float y, float width, float height);
     void drag(float x, float y, float width, float height);
     void end_grab();
     bool grabbing() const { return world_->grab().has_value(); }
     void toggle_pin(std::uint32_t particle);
 
 private:
-    void after_load(const Params& params);
+    void after_load(const Scene& scene);
     void sample_energy();
 
     std::unique_ptr<World> world_;
-    Params built_with_;      // the params the current body was built from
+    Scene scene_;            // what the current world was built from (its params kept by the world)
+    std::vector<RigidBodyDef> built_rigid_bodies_;  // the rigid bodies as the world was built
     FixedClock clock_;
     std::string error_;
     std::string source_;

@@ -24,12 +24,12 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             last_x_ = px;
             last_y_ = py;
             if (e.button == 0) {
-                const auto particle = demo.pick(px, py, width, height, 18.0f * ui_scale);
-                if (particle && e.shift) {
-                    demo.toggle_pin(*particle);  // shift-click: pin or free
+                const auto picked = demo.pick(px, py, width, height, 18.0f * ui_scale);
+                if (picked && e.shift && !picked->rigid) {
+                    demo.toggle_pin(picked->particle);  // shift-click: pin or free
                     drag_button_ = -1;
-                } else if (particle) {
-                    demo.begin_grab(*particle, px, py, width, height);
+                } else if (picked) {
+                    demo.begin_grab(*picked, px, py, width, height);
                     drag_ = Drag::Grab;
                 } else {
                     drag_ = Drag::Orbit;  // left-drag on empty space turns the view

@@ -12,6 +12,8 @@ namespace softbody {
 namespace {
 
 constexpr float kMaxSpeed = 1e5f;       // m/s: faster than this is an explosion, not physics
+constexpr double kMaxAngularSpeed = 1e5;  // rad/s: 16,000 turns a second is an explosion too
+constexpr double kMaxDistance = 1e7;    // m from the origin: a rigid body flung this far has blown up
 constexpr double kEnergyGrowth = 10.0;  // energy beyond the baseline, in units of the energy in play
 
 std::string fixed(double value, int digits) {
@@ -53,6 +55,21 @@ std::string soft_body_fault(const SoftBody& body, const std::string& who) {
     return "";
 }
 
+// What is wrong with a rigid body's state, or "": a number that is not finite, an absurd speed
+// or spin, or a body flung absurdly far.
+std::string rigid_body_fault(const RigidBody& body, const double* state) {
+    const std::string who = "rigid body '" + body.name + "'";
+    for (int k = 0; k < rigid::kStateSize; ++k) {
+        if (!std::isfinite(state[k])) return who + "'s state is no longer a finite number";
+    }
+    const RigidMotion m = rigid_motion(body, state);
+    if (!is_finite(m.omega) || !is_finite(m.v)) return who + "'s state is no longer a finite number";
+    if (length(m.v) > kMaxSpeed) return who + " moves at " + fixed(length(m.v), 0) + " m/s";
+    if (length(m.omega) > kMaxAngularSpeed) return who + " spins at " + fixed(length(m.omega), 0) + " rad/s";
+    if (length(m.x) > kMaxDistance) return who + " is " + fixed(length(m.x), 0) + " m from the origin";
+    return "";
+}
+
 }  // namespace
 
 void World::check_divergence() {
@@ -60,6 +77,9 @@ void World::check_divergence() {
     for (std::size_t b = 0; b < soft_.size() && what.empty(); ++b) {
         const std::string who = soft_.size() > 1 ? "body '" + soft_[b].name + "' particle " : "particle ";
         what = soft_body_fault(soft_[b], who);
+    }
+    for (std::size_t b = 0; b < rigid_.size() && what.empty(); ++b) {
+        what = rigid_body_fault(rigid_[b], rigid_state(b));
     }
     // Past its stability limit a body need not fly apart: the fastest mode (the uniform
     // expansion) can grow until the springs turn the body inside out and cap it, leaving it
@@ -119,7 +139,8 @@ void World::take_energy_baseline() {
     energy_baseline_stale_ = false;
 }
 
-// The O(N) part of energy(): sum 1/2 m |v|^2 (free particles) + sum -m (g . x).
+// The O(N) part of energy(): sum 1/2 m |v|^2 (free particles) + sum -m (g . x), and the
+// rigid bodies' kinetic and gravitational energy.
 double World::kinetic_plus_gravity() const {
     double kinetic = 0.0, gravity = 0.0;
     for (const SoftBody& body : soft_) {
@@ -128,6 +149,12 @@ double World::kinetic_plus_gravity() const {
             if (body.inv_mass[i] != 0.0f) kinetic += 0.5 * double(body.mass) * double(dot(v, v));
             gravity -= double(body.mass) * double(dot(params_.gravity, body.x[i]));
         }
+    }
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (rigid_[b].fixed) continue;
+        const RigidMotion m = rigid_motion(b);
+        kinetic += 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
+        gravity -= rigid_[b].mass * dot(Vec3d(params_.gravity), m.x);
     }
     return kinetic + gravity;
 }

@@ -22,10 +22,60 @@ Energy World::energy() {
                            body.params.stiffness, body.params.damping};
         e.elastic += reference_kernel_ ? elastic_energy_reference(in) : body.kernel->elastic_energy(in);
     }
+    // Rigid bodies: 1/2 |P|^2 / m + 1/2 L . w, and -m (g . x). Fixed ones do not move.
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (rigid_[b].fixed) continue;
+        const RigidMotion m = rigid_motion(b);
+        const double rotational = 0.5 * dot(m.L, m.omega);
+        e.kinetic += 0.5 * dot(m.P, m.v) + rotational;
+        e.rotational += rotational;
+        e.gravity -= rigid_[b].mass * dot(Vec3d(params_.gravity), m.x);
+    }
+    // Links: 1/2 k (l - l0)^2.
+    for (const Link& link : links_) {
+        const double stretch = length(link_end_position(link.b) - link_end_position(link.a)) - link.l0;
+        e.elastic += 0.5 * link.k * stretch * stretch;
+    }
     return e;
 }
 
+Vec3d World::momentum() const {
+    Vec3d P;
+    for (const SoftBody& body : soft_) {
+        for (std::size_t i = 0; i < body.particle_count(); ++i) {
+            if (body.inv_mass[i] != 0.0f) P += Vec3d(body.v[i]) * double(body.mass);
+        }
+    }
+    for (std::size_t b = 0; b < rigid_.size(); ++b) P += rigid_motion(b).P;
+    return P;
+}
+
+Vec3d World::angular_momentum() const {
+    Vec3d L;
+    for (const SoftBody& body : soft_) {
+        for (std::size_t i = 0; i < body.particle_count(); ++i) {
+            if (body.inv_mass[i] != 0.0f) L += cross(Vec3d(body.x[i]), Vec3d(body.v[i]) * double(body.mass));
+        }
+    }
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        const RigidMotion m = rigid_motion(b);
+        L += cross(m.x, m.P) + m.L;  // about the origin: the orbit of the centre of mass, and the spin
+    }
+    return L;
+}
+
 Vec3 World::center_of_mass() const {
+    if (soft_.empty()) {
+        // No soft body: the moving rigid bodies' centre of mass (the origin when there are none).
+        Vec3d sum;
+        double mass = 0.0;
+        for (std::size_t b = 0; b < rigid_.size(); ++b) {
+            if (rigid_[b].fixed) continue;
+            sum += rigid_motion(b).x * rigid_[b].mass;
+            mass += rigid_[b].mass;
+        }
+        return mass > 0.0 ? to_float(sum / mass) : Vec3{};
+    }
     double x = 0.0, y = 0.0, z = 0.0;
     const std::size_t n = particle_count();
     for (std::size_t i = 0; i < n; ++i) {
@@ -36,7 +86,15 @@ Vec3 World::center_of_mass() const {
     return {float(x / double(n)), float(y / double(n)), float(z / double(n))};
 }
 
-float World::min_z() const { return *std::min_element(body().x.z.begin(), body().x.z.end()); }
+float World::min_z() const {
+    if (!soft_.empty()) return *std::min_element(body().x.z.begin(), body().x.z.end());
+    double lowest = 0.0;  // no soft body: the lowest point any rigid body's bounding sphere reaches
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        const double z = rigid_motion(b).x.z - rigid_[b].bounding_radius;
+        lowest = b == 0 ? z : std::min(lowest, z);
+    }
+    return float(lowest);
+}
 
 std::uint64_t World::state_hash() const {
     std::uint64_t hash = 1469598103934665603ull;
@@ -53,6 +111,11 @@ std::uint64_t World::state_hash() const {
             mix(a->y);
             mix(a->z);
         }
+    }
+    for (double value : y_) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        for (int b = 0; b < 8; ++b) hash = (hash ^ ((bits >> (8 * b)) & 0xFFu)) * 1099511628211ull;
     }
     return hash;
 }

@@ -35,4 +35,45 @@ void add_grab(Vec3Array& force, const ParticleState& s, const Grab& grab, float 
     force.add(p, k_grab * (grab.target - x_p) - c_grab * v_p);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Rigid bodies
+// ---------------------------------------------------------------------------------------------
+void add_force_at(Wrench& w, const RigidMotion& m, const Vec3d& p, const Vec3d& F) {
+    w.F += F;
+    w.tau += cross(p - m.x, F);  // Eq. 27: tau = r x F
+}
+
+void add_rigid_gravity(Wrench& w, const RigidBody& body, const Vec3& g) { w.F += Vec3d(g) * body.mass; }
+
+void add_rigid_drag(Wrench& w, const RigidBody& body, const RigidMotion& m, float rho) {
+    // Eq. 23: F_drag = -1/2 rho C_D S |v| v.
+    w.F += m.v * (-0.5 * rho * body.drag_coefficient * body.drag_area * length(m.v));
+}
+
+void add_rigid_grab(Wrench& w, const RigidBody& body, const RigidMotion& m, const Grab& grab, float h) {
+    const Vec3d r = m.R * grab.point;
+    const Vec3d p = m.x + r;
+    // The mass the pull feels at that point: 1/m_eff = 1/m + |r|^2 J^-1 (bounded by its trace),
+    // so the default spring is as brisk, and as stable, as the particle's grab.
+    const double inv_m_eff = body.inv_mass + dot(r, r) * m.J_inv.trace();
+    const double m_eff = inv_m_eff > 0.0 ? 1.0 / inv_m_eff : 0.0;
+    const double k = grab.stiffness > 0.0f ? double(grab.stiffness) : m_eff / (double(h) * h) * 0.5;
+    const double c = 2.0 * std::sqrt(k * m_eff) * 0.5;
+    const Vec3d u = m.v + cross(m.omega, r);
+    add_force_at(w, m, p, (Vec3d(grab.target) - p) * k - u * c);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Between bodies
+// ---------------------------------------------------------------------------------------------
+Vec3d link_force(const Link& link, const Vec3d& p_a, const Vec3d& u_a, const Vec3d& p_b, const Vec3d& u_b) {
+    const Vec3d d = p_b - p_a;
+    const double l = length(d);
+    if (l == 0.0) return {};
+    const Vec3d d_hat = d / l;
+    const Vec3d F_spring = d_hat * (link.k * (l - link.l0));             // Eq. 21
+    const Vec3d F_damp = d_hat * (link.c * dot(u_b - u_a, d_hat));        // Eq. 22
+    return F_spring + F_damp;
+}
+
 }  // namespace softbody

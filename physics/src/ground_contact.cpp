@@ -1,5 +1,6 @@
 #include "ground_contact.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace softbody {
@@ -8,6 +9,7 @@ namespace {
 
 constexpr float kContactTolerance = 1e-5f;  // m: a particle this close to the ground touches it
 constexpr float kStaticSpeed = 1e-4f;       // m/s: below this tangential speed, friction is static
+constexpr double kRigidMargin = 1e-4;       // m: a rigid body's point this close above the ground touches it
 
 }  // namespace
 
@@ -78,6 +80,72 @@ void resolve_ground_contacts(SoftBody& body, const Params& world, float h) {
         else if (v_n < 0.0f) v.z[i] = 0.0f;
         if (verlet) body.verlet_step.set(i, v[i] * h);
     }
+}
+
+void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n) {
+    if (points.size() <= 4) return;
+    const auto area = [&](const Vec3d& a, const Vec3d& b, const Vec3d& c) { return dot(cross(b - a, c - a), n); };
+    std::vector<RigidContact> kept;
+    const auto take = [&](auto score) {
+        std::size_t best = 0;
+        double best_score = -1e300;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const double value = score(points[i]);
+            if (value > best_score) {
+                best = i;
+                best_score = value;
+            }
+        }
+        kept.push_back(points[best]);
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(best));
+    };
+    take([](const RigidContact& c) { return c.depth; });
+    const Vec3d p0 = kept[0].point;
+    take([&](const RigidContact& c) { return length(c.point - p0); });
+    const Vec3d p1 = kept[1].point;
+    take([&](const RigidContact& c) { return std::abs(area(p0, p1, c.point)); });
+    Vec3d p2 = kept[2].point;
+    Vec3d a = p0, b = p1;
+    if (area(a, b, p2) < 0.0) std::swap(a, b);  // a, b, p2 counter-clockwise about n
+    take([&](const RigidContact& c) {
+        return std::max({-area(a, b, c.point), -area(b, p2, c.point), -area(p2, a, c.point)});
+    });
+    points = std::move(kept);
+}
+
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* state, const double* start,
+                           const Params& world, std::vector<RigidContact>& out) {
+    if (!world.ground || body.fixed) return;
+    const RigidMotion m = rigid_motion(body, state);
+    const RigidMotion m0 = rigid_motion(body, start);
+    const Vec3d n{0.0, 0.0, 1.0};
+    const double ground = world.ground_height;
+    RigidContact c;
+    c.a = index;
+    c.b = -1;
+    c.normal = n;
+    c.restitution = body.restitution.value_or(world.restitution);
+    c.friction = body.friction.value_or(world.dynamic_friction);
+    const auto add = [&](const Vec3d& local, std::uint32_t feature, std::vector<RigidContact>& into) {
+        const Vec3d p = m.x + m.R * local;
+        if (p.z > ground + kRigidMargin) return;
+        c.feature = feature;
+        c.point = p;
+        c.depth = ground - p.z;
+        c.separation = (m0.x + m0.R * local).z - ground;
+        c.local_a = local;
+        c.local_b = {p.x, p.y, ground};
+        into.push_back(c);
+    };
+    if (body.shape == ShapeKind::Sphere) {
+        // The lowest point of the sphere, in body axes: R^T (-r n).
+        add(m.R.transposed() * (n * -body.radius), 0, out);
+        return;
+    }
+    std::vector<RigidContact> manifold;
+    for (std::size_t v = 0; v < body.hull->vertices.size(); ++v) add(body.hull->vertices[v], std::uint32_t(v), manifold);
+    reduce_manifold(manifold, n);
+    out.insert(out.end(), manifold.begin(), manifold.end());
 }
 
 }  // namespace softbody

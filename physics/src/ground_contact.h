@@ -1,13 +1,19 @@
-// Internal to the physics library: a soft body's particles against the ground plane
-// z = ground_height, with normal n = (0, 0, 1).
+// Internal to the physics library: bodies against the ground plane z = ground_height, with
+// normal n = (0, 0, 1).
+//
+// A soft body's particles:
 //   During the force evaluation: Coulomb friction, Eq. 24 (static) and Eq. 25 (dynamic), for
 //   particles touching the ground and pressed into it.
 //   After the step: static friction holds, a slide stops without reversing, and the ground
 //   pushes back with restitution (impulse-momentum).
 #pragma once
 
+#include <vector>
+
 #include "forces.h"
+#include "physics/contact.h"
 #include "physics/params.h"
+#include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 
 namespace softbody {
@@ -19,5 +25,18 @@ void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params&
 // After a step of h: x and v are set together, and Verlet's step with them, so position and
 // velocity stay consistent (x_n - x_{n-1} = v h).
 void resolve_ground_contacts(SoftBody& body, const Params& world, float h);
+
+// A rigid body: the points of its shape at or below the ground (a sphere's lowest point; the
+// vertices of its hull, at most four kept: the deepest, and those that span the largest area
+// with it). The ground is static (1/m = 0, J^-1 = 0); the contacts go to the solver
+// (contact_solver.h), with the body's restitution and friction or the world's.
+// `state`: where the step took the body; `start`: where it was when the step began.
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* state, const double* start,
+                           const Params& world, std::vector<RigidContact>& out);
+
+// Keeps at most four of a manifold's points on a plane of normal n: the deepest, the one
+// farthest from it, the one that spans the largest triangle with those two, and the one that
+// adds the most area outside that triangle. Four points hold a face steady; more only cost.
+void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n);
 
 }  // namespace softbody

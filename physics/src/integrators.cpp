@@ -97,4 +97,57 @@ void hold_pins(SoftBody& body) {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Rigid bodies: Listing 10's flat array
+// ---------------------------------------------------------------------------------------------
+void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, const Vec3d& tau, double* dy) {
+    for (int k = 0; k < rigid::kStateSize; ++k) dy[k] = 0.0;
+    if (body.fixed) return;
+    const RigidMotion m = rigid_motion(body, y);
+    const Quat dq = Quat::pure(m.omega) * m.q * 0.5;  // Eq. 35: dq/dt = 1/2 w q
+    for (int k = 0; k < 3; ++k) {
+        dy[rigid::P + k] = F[k];      // dP/dt = F_net
+        dy[rigid::X + k] = m.v[k];    // dx/dt = P / m
+        dy[rigid::L + k] = tau[k];    // dL/dt = tau_net (Eq. 26)
+    }
+    dy[rigid::Q] = dq.w;
+    dy[rigid::Q + 1] = dq.x;
+    dy[rigid::Q + 2] = dq.y;
+    dy[rigid::Q + 3] = dq.z;
+}
+
+namespace {
+bool is_momentum_slot(std::size_t k) {
+    const std::size_t slot = k % rigid::kStateSize;
+    return slot < rigid::X || (slot >= rigid::L && slot < rigid::Q);
+}
+}  // namespace
+
+void flat_euler(std::span<double> y, std::span<const double> dy, double h) {
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += h * dy[k];
+}
+
+void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double h) {
+    for (std::size_t k = 0; k < y.size(); ++k) {
+        if (is_momentum_slot(k)) y[k] += h * dy[k];
+    }
+}
+
+void flat_euler_positions(std::span<double> y, std::span<const double> dy, double h) {
+    for (std::size_t k = 0; k < y.size(); ++k) {
+        if (!is_momentum_slot(k)) y[k] += h * dy[k];
+    }
+}
+
+void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage) {
+    for (std::size_t i = 0; i < y.size(); ++i) stage[i] = y[i] + w * k[i];
+}
+
+void flat_rk4_finish(std::span<double> y, std::span<const double> k0, std::span<const double> k1,
+                     std::span<const double> k2, std::span<const double> k3, double h) {
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] += h / 6.0 * (k0[i] + 2.0 * k1[i] + 2.0 * k2[i] + k3[i]);
+}
+
+double rk4_stage_offset(int s, double h) { return s < 3 ? 0.5 * h : h; }
+
 }  // namespace softbody

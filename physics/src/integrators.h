@@ -6,8 +6,22 @@
 //   symplectic_euler  v_{n+1} = v_n + a h,  x_{n+1} = x_n + v_{n+1} h
 //   explicit_euler    x_{n+1} = x_n + v_n h,  v_{n+1} = v_n + a_n h              (Listings 10, 11)
 //   rk4               classic Runge-Kutta: four force evaluations (stages 0 to 3)
+//
+// Rigid bodies: Listing 10's flat array of thirteen numbers a body (P, x, L, q), advanced by
+// one implementation of each method for every body, whatever the numbers mean (Listing 11's
+// point). The derivative (Listing 9, Eq. 26, 35) is
+//   dP/dt = F,  dx/dt = P / m,  dL/dt = tau,  dq/dt = 1/2 w q  with  w = J_world^-1 L (Eq. 36).
+//   explicit_euler    y_{n+1} = y_n + h f(y_n)          (Listing 9 exactly; gains energy in free rotation)
+//   symplectic_euler  momenta P, L first, then x and q from the new momenta
+//   verlet            for a rigid body, the same as symplectic_euler: position Verlet with Euler
+//                     velocities is symplectic Euler when nothing else moves the state, and a
+//                     quaternion has no "previous position" to take a difference of
+//   rk4               classic Runge-Kutta on the whole array
 #pragma once
 
+#include <span>
+
+#include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 
 namespace softbody {
@@ -29,5 +43,21 @@ void rk4_finish(SoftBody& body, float h);
 
 // Pinned particles do not move, whatever the integrator made of them.
 void hold_pins(SoftBody& body);
+
+// Listing 9's state derivative of one rigid body, given its net force and torque. A fixed
+// body's is zero.
+void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, const Vec3d& tau, double* dy);
+
+// y += h dy, over the whole array (Listing 10's ExplicitEuler call).
+void flat_euler(std::span<double> y, std::span<const double> dy, double h);
+// The momentum slots (P, L) only, then the position slots (x, q) only: symplectic Euler's two halves.
+void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double h);
+void flat_euler_positions(std::span<double> y, std::span<const double> dy, double h);
+// RK4: stage = y + w k; and at the end y += h/6 (k0 + 2 k1 + 2 k2 + k3).
+void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage);
+void flat_rk4_finish(std::span<double> y, std::span<const double> k0, std::span<const double> k1,
+                     std::span<const double> k2, std::span<const double> k3, double h);
+// RK4's stage offsets from the start (h/2, h/2, h for stages 1, 2, 3).
+double rk4_stage_offset(int s, double h);
 
 }  // namespace softbody

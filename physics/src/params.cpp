@@ -15,27 +15,28 @@ namespace {
 // Ranges are what the physics can honour, not what looks good on a slider: a value outside
 // them is rejected. Where the book gives a value (Listing 8), it is the default.
 constexpr ParamInfo kTable[] = {
-    {"mesh", ParamType::String, "", "", "Mesh file, OBJ or OFF: one particle per distinct vertex position", 0, 0, false, false},
-    {"scale", ParamType::Float, "", "", "Uniform scale from mesh units to metres", 0, 1e4, true, false},
-    {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z (a y-up file needs 90,0,0)", -360, 360, false, false},
-    {"init_height", ParamType::Float, "m", "", "Height added to every vertex's z at the start (Listing 8)", -1e4, 1e4, false, false},
-    {"initial_velocity", ParamType::Vec3, "m/s", "", "Velocity of every particle at the start", -1e3, 1e3, false, false},
-    {"particle_mass", ParamType::Float, "kg", "", "Mass m of each particle (Listing 8: 1)", 0, 1e6, true, true},
-    {"stiffness", ParamType::Float, "N/m", "Eq. 21", "Spring constant k between every pair (Listing 8: 10)", 0, 1e7, false, true},
-    {"damping", ParamType::Float, "kg/s", "Eq. 22", "Damper coefficient c between every pair (Listing 8: 0.1)", 0, 1e6, false, true},
+    {"mesh", ParamType::String, "", "", "Mesh file, OBJ or OFF: one particle per distinct vertex position", 0, 0, false, false, ParamScope::Body},
+    {"scale", ParamType::Float, "", "", "Uniform scale from mesh units to metres", 0, 1e4, true, false, ParamScope::Body},
+    {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z (a y-up file needs 90,0,0)", -360, 360, false, false, ParamScope::Body},
+    {"init_height", ParamType::Float, "m", "", "Height added to every vertex's z at the start (Listing 8)", -1e4, 1e4, false, false, ParamScope::Body},
+    {"initial_velocity", ParamType::Vec3, "m/s", "", "Velocity of every particle at the start", -1e3, 1e3, false, false, ParamScope::Body},
+    {"particle_mass", ParamType::Float, "kg", "", "Mass m of each particle (Listing 8: 1)", 0, 1e6, true, true, ParamScope::Body},
+    {"stiffness", ParamType::Float, "N/m", "Eq. 21", "Spring constant k between every pair (Listing 8: 10)", 0, 1e7, false, true, ParamScope::Body},
+    {"damping", ParamType::Float, "kg/s", "Eq. 22", "Damper coefficient c between every pair (Listing 8: 0.1)", 0, 1e6, false, true, ParamScope::Body},
     {"gravity", ParamType::Vec3, "m/s^2", "", "Gravitational acceleration g, z up (Listing 8: 0,0,-9.81)", -1e3, 1e3, false, true},
     {"dt", ParamType::Float, "s", "", "Fixed physics tick (Listing 8: 0.02)", 0, 1, true, true},
     {"substeps", ParamType::Int, "", "", "Integration steps of dt/substeps within one tick", 1, 1000, false, true},
     {"auto_substeps", ParamType::Bool, "", "", "Use the fewest substeps the stability estimate allows (at least `substeps`)", 0, 0, false, true},
     {"integrator", ParamType::Integrator, "", "", "verlet (default), symplectic_euler, explicit_euler or rk4", 0, 0, false, true},
-    {"drag_coefficient", ParamType::Float, "", "Eq. 23", "Drag coefficient C_D (0.1 to 0.4 for blunt bodies); 0 turns drag off", 0, 10, false, true},
+    {"drag_coefficient", ParamType::Float, "", "Eq. 23", "Drag coefficient C_D (0.1 to 0.4 for blunt bodies); 0 turns drag off", 0, 10, false, true, ParamScope::Body},
     {"air_density", ParamType::Float, "kg/m^3", "Eq. 23", "Fluid density rho (air: 1.2)", 0, 1e4, false, true},
     {"ground", ParamType::Bool, "", "", "Whether the ground plane z = ground_height exists", 0, 0, false, true},
     {"ground_height", ParamType::Float, "m", "", "Height of the ground plane", -1e4, 1e4, false, true},
     {"restitution", ParamType::Float, "", "", "Coefficient of restitution e at the ground: v_n' = -e v_n", 0, 1, false, true},
     {"static_friction", ParamType::Float, "", "Eq. 24", "Static friction coefficient mu_s at the ground", 0, 2, false, true},
     {"dynamic_friction", ParamType::Float, "", "Eq. 25", "Dynamic friction coefficient mu_d at the ground", 0, 2, false, true},
-    {"pinned", ParamType::IndexList, "", "", "Vertex indices (0-based, as in the file) held fixed in place", 0, 0, false, false},
+    {"pinned", ParamType::IndexList, "", "", "Vertex indices (0-based, as in the file) held fixed in place", 0, 0, false, false, ParamScope::Body},
+    {"renormalize_every", ParamType::Int, "ticks", "Listing 9", "Renormalise each rigid body's quaternion every this many ticks (Listing 9: 5); 0: never, and watch |q| drift", 0, 1e6, false, true},
 };
 
 struct FieldRef {
@@ -70,6 +71,7 @@ FieldRef field(Params& p, std::string_view key) {
     if (key == "static_friction") return {.f = &p.static_friction};
     if (key == "dynamic_friction") return {.f = &p.dynamic_friction};
     if (key == "pinned") return {.list = &p.pinned};
+    if (key == "renormalize_every") return {.i = &p.renormalize_every};
     return {};
 }
 

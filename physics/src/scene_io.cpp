@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -112,9 +113,182 @@ json value_json(const Params& params, const ParamInfo& info) {
     throw InputError(path + ": " + what + " (" + std::strerror(errno) + ")");
 }
 
+std::string number_text(const json& v) {
+    std::ostringstream out;
+    out.precision(17);
+    out << v.get<double>();
+    return out.str();
+}
+
+// Where in the text a nested key is: the line of the first "key" after `from` (an offset), so
+// an error inside the third rigid body points at that body's line, not the first body's.
+std::string where_after(const std::string& origin, const std::string& text, std::size_t from, const std::string& key) {
+    const auto at = text.find("\"" + key + "\"", std::min(from, text.size()));
+    if (at == std::string::npos) return origin + ":" + std::to_string(line_of_offset(text, from));
+    return origin + ":" + std::to_string(line_of_offset(text, at));
+}
+
+// The offset of the `index`-th object of the array under `array_key`, roughly: where its name
+// (or, without one, the array) appears. For pointing errors at a line.
+std::size_t element_offset(const std::string& text, const std::string& array_key, const json& element) {
+    const auto array_at = text.find("\"" + array_key + "\"");
+    std::size_t from = array_at == std::string::npos ? 0 : array_at;
+    if (element.is_object() && element.contains("name") && element["name"].is_string()) {
+        const auto named = text.find("\"" + element["name"].get<std::string>() + "\"", from);
+        if (named != std::string::npos) from = named;
+    }
+    return from;
+}
+
+std::string relative_to(const std::string& origin, const std::string& path) {
+    if (path.empty() || !fs::path(path).is_relative()) return path;
+    const fs::path folder = fs::path(origin).parent_path();
+    return folder.empty() ? path : (folder / path).lexically_normal().string();
+}
+
+// A JSON value as command-line text for a rigid body's key (set_rigid_key checks it).
+std::string rigid_value_text(const RigidBodyDef& def, const RigidKeyInfo& info, const json& value) {
+    auto fail = [&](const char* expected) -> std::string {
+        throw InputError("rigid body '" + printable(def.name) + "', key '" + std::string(info.key) + "': expected " +
+                         expected + ", got " + type_name(value));
+    };
+    auto numbers = [&](std::size_t count, const char* expected) {
+        if (!value.is_array() || value.size() != count) return fail(expected);
+        std::string out;
+        for (const auto& item : value) {
+            if (!item.is_number()) return fail(expected);
+            out += (out.empty() ? "" : ",") + number_text(item);
+        }
+        return out;
+    };
+    switch (info.type) {
+        case RigidKeyType::Number:
+        case RigidKeyType::PositiveNumber:
+            if (!value.is_number()) return fail("a number");
+            return number_text(value);
+        case RigidKeyType::Vec3: return numbers(3, "an array of three numbers [x, y, z]");
+        case RigidKeyType::Quat: return numbers(4, "an array of four numbers [w, x, y, z]");
+        case RigidKeyType::Bool:
+            if (!value.is_boolean()) return fail("true or false");
+            return value.get<bool>() ? "true" : "false";
+        case RigidKeyType::Shape:
+        case RigidKeyType::Text:
+            if (!value.is_string()) return fail("a string");
+            return value.get<std::string>();
+    }
+    return {};
+}
+
+// A rigid body's key as JSON, straight from its field (doubles written to full precision), or
+// null when the key is not set.
+json rigid_value_json(const RigidBodyDef& def, std::string_view key) {
+    const auto vec = [](const Vec3d& v) { return json::array({v.x, v.y, v.z}); };
+    if (key == "shape") return std::string(to_string(def.shape));
+    if (key == "size") return def.size ? vec(*def.size) : json();
+    if (key == "radius") return def.radius ? json(*def.radius) : json();
+    if (key == "height") return def.height ? json(*def.height) : json();
+    if (key == "mesh") return def.mesh.empty() ? json() : json(def.mesh);
+    if (key == "scale") return def.shape == ShapeKind::Mesh ? json(def.scale) : json();
+    if (key == "mass") return def.mass ? json(*def.mass) : json();
+    if (key == "density") return def.density ? json(*def.density) : json();
+    if (key == "position") return def.position ? vec(*def.position) : json();
+    if (key == "orientation") return json::array({def.orientation.w, def.orientation.x, def.orientation.y, def.orientation.z});
+    if (key == "velocity") return vec(def.velocity);
+    if (key == "angular_velocity") return vec(def.angular_velocity);
+    if (key == "fixed") return def.fixed;
+    if (key == "restitution") return def.restitution ? json(*def.restitution) : json();
+    if (key == "friction") return def.friction ? json(*def.friction) : json();
+    if (key == "drag_coefficient") return def.drag_coefficient;
+    return json();  // "rotation": kept as the orientation
+}
+
+RigidBodyDef parse_rigid_body(const json& element, const std::string& origin, const std::string& text,
+                              std::size_t at) {
+    if (!element.is_object()) throw InputError(origin + ":" + std::to_string(line_of_offset(text, at)) + ": each of \"rigid_bodies\" must be an object {\"name\": ..., \"shape\": ...}");
+    RigidBodyDef def;
+    if (!element.contains("name") || !element["name"].is_string() || element["name"].get<std::string>().empty()) {
+        throw InputError(origin + ":" + std::to_string(line_of_offset(text, at)) + ": a rigid body needs a \"name\" (a string)");
+    }
+    def.name = element["name"].get<std::string>();
+    // The shape first: the keys that follow are checked against it.
+    if (element.contains("shape")) {
+        try {
+            set_rigid_key(def, "shape", rigid_value_text(def, *find_rigid_key("shape"), element["shape"]));
+        } catch (const InputError& e) {
+            throw InputError(where_after(origin, text, at, "shape") + ": " + e.what());
+        }
+    }
+    if (element.contains("orientation") && element.contains("rotation")) {
+        throw InputError(where_after(origin, text, at, "rotation") + ": rigid body '" + printable(def.name) +
+                         "': give 'orientation' or 'rotation', not both");
+    }
+    for (const auto& [key, value] : element.items()) {
+        if (key == "name" || key == "shape") continue;
+        const RigidKeyInfo* info = find_rigid_key(key);
+        try {
+            if (!info) set_rigid_key(def, key, "");  // refused, with the list of keys
+            set_rigid_key(def, key, rigid_value_text(def, *info, value));
+        } catch (const InputError& e) {
+            throw InputError(where_after(origin, text, at, key) + ": " + e.what());
+        }
+    }
+    def.mesh = relative_to(origin, def.mesh);
+    return def;
+}
+
+SpringEndDef parse_spring_end(const json& value, const std::string& where, const char* name) {
+    const std::string what = where + ": spring end '" + name + "'";
+    if (!value.is_object()) throw InputError(what + " must be an object {\"body\": NAME, \"point\": [x, y, z]} or {\"body\": NAME, \"vertex\": K}");
+    SpringEndDef end;
+    for (const auto& [key, item] : value.items()) {
+        if (key == "body") {
+            if (!item.is_string() || item.get<std::string>().empty()) throw InputError(what + ": \"body\" must be a body's name");
+            end.body = item.get<std::string>();
+        } else if (key == "point") {
+            if (!item.is_array() || item.size() != 3 || !item[0].is_number() || !item[1].is_number() || !item[2].is_number()) {
+                throw InputError(what + ": \"point\" must be an array of three numbers [x, y, z]");
+            }
+            const Vec3d p{item[0].get<double>(), item[1].get<double>(), item[2].get<double>()};
+            if (!is_finite(p) || length(p) > 1e6) throw InputError(what + ": \"point\" must be finite and within 1e6 m");
+            end.point = p;
+        } else if (key == "vertex") {
+            if (!item.is_number_integer() || item.get<std::int64_t>() < 0) {
+                throw InputError(what + ": \"vertex\" must be a vertex index (a whole number from 0)");
+            }
+            end.vertex = item.get<std::int64_t>();
+        } else {
+            throw InputError(what + ": unknown key '" + printable(key) + "' (body, point, vertex)");
+        }
+    }
+    if (end.point && end.vertex) throw InputError(what + ": give a \"point\" or a \"vertex\", not both");
+    return end;
+}
+
+SpringDef parse_spring(const json& element, const std::string& where) {
+    if (!element.is_object()) throw InputError(where + ": each of \"springs\" must be an object {\"a\": ..., \"b\": ..., \"stiffness\": k}");
+    SpringDef def;
+    const auto number = [&](const std::string& key, const json& v, double max) {
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 || v.get<double>() > max) {
+            throw InputError(where + ": spring key '" + key + "' must be a number from 0 to " + number_text(json(max)));
+        }
+        return v.get<double>();
+    };
+    for (const auto& [key, value] : element.items()) {
+        if (key == "a") def.a = parse_spring_end(value, where, "a");
+        else if (key == "b") def.b = parse_spring_end(value, where, "b");
+        else if (key == "stiffness") def.stiffness = number(key, value, 1e7);
+        else if (key == "damping") def.damping = number(key, value, 1e6);
+        else if (key == "rest_length") def.rest_length = number(key, value, 1e6);
+        else throw InputError(where + ": unknown spring key '" + printable(key) + "' (a, b, stiffness, damping, rest_length)");
+    }
+    if (!element.contains("a") || !element.contains("b")) throw InputError(where + ": a spring needs both ends, \"a\" and \"b\"");
+    if (!def.stiffness) throw InputError(where + ": a spring needs \"stiffness\" (N/m)");
+    return def;
+}
+
 }  // namespace
 
-Params parse_scene(const std::string& text, const std::string& origin, const Params& base) {
+Scene parse_scene(const std::string& text, const std::string& origin, const Scene& base) {
     if (text.size() > kMaxSceneBytes) {
         throw InputError(origin + ": too large for a scene file (" + std::to_string(text.size()) + " bytes)");
     }
@@ -149,12 +323,18 @@ Params parse_scene(const std::string& text, const std::string& origin, const Par
     }
     if (!root.is_object()) throw InputError(origin + ": a scene file must be a JSON object {\"key\": value, ...}");
 
-    Params params = base;
+    Scene scene = base;
+    Params& params = scene.params;
     for (const auto& [key, value] : root.items()) {
+        if (key == "rigid_bodies" || key == "soft_bodies" || key == "springs") {
+            if (!value.is_array()) throw InputError(where(origin, text, key) + ": \"" + key + "\" must be an array");
+            continue;
+        }
         const ParamInfo* info = find_param(key);
         if (!info) {
             std::string message = where(origin, text, key) + ": unknown key '" + printable(key) + "'";
             if (auto hint = closest_key(key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
+            else message += " (besides the keys of params: soft_bodies, rigid_bodies, springs)";
             throw InputError(message);
         }
         try {
@@ -163,34 +343,184 @@ Params parse_scene(const std::string& text, const std::string& origin, const Par
             throw InputError(where(origin, text, key) + ": " + e.what());
         }
     }
-    if (root.contains("mesh") && !params.mesh.empty() && fs::path(params.mesh).is_relative()) {
-        const fs::path folder = fs::path(origin).parent_path();
-        if (!folder.empty()) params.mesh = (folder / params.mesh).lexically_normal().string();
+    if (root.contains("mesh")) params.mesh = relative_to(origin, params.mesh);
+
+    if (root.contains("soft_bodies")) {
+        scene.soft_bodies.clear();
+        for (const json& element : root["soft_bodies"]) {
+            const std::size_t at = element_offset(text, "soft_bodies", element);
+            const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
+            if (!element.is_object() || !element.contains("name") || !element["name"].is_string() ||
+                element["name"].get<std::string>().empty()) {
+                throw InputError(line + ": each of \"soft_bodies\" must be an object with a \"name\" and a \"mesh\"");
+            }
+            SoftBodyScene body;
+            body.name = element["name"].get<std::string>();
+            for (const auto& [key, value] : element.items()) {
+                if (key == "name") continue;
+                const ParamInfo* info = find_param(key);
+                if (!info || info->scope != ParamScope::Body) {
+                    throw InputError(where_after(origin, text, at, key) + ": soft body '" + printable(body.name) + "': '" +
+                                     printable(key) + "' is " + (info ? "a world key: set it at the top level" : "not a key of a soft body"));
+                }
+                try {
+                    set_param(body.params, key, value_text(*info, value));
+                } catch (const InputError& e) {
+                    throw InputError(where_after(origin, text, at, key) + ": soft body '" + printable(body.name) + "': " + e.what());
+                }
+            }
+            if (body.params.mesh.empty()) throw InputError(line + ": soft body '" + printable(body.name) + "' needs a \"mesh\"");
+            body.params.mesh = relative_to(origin, body.params.mesh);
+            scene.soft_bodies.push_back(std::move(body));
+        }
     }
-    return params;
+    if (root.contains("rigid_bodies")) {
+        scene.rigid_bodies.clear();
+        for (const json& element : root["rigid_bodies"]) {
+            scene.rigid_bodies.push_back(parse_rigid_body(element, origin, text, element_offset(text, "rigid_bodies", element)));
+        }
+    }
+    if (root.contains("springs")) {
+        scene.springs.clear();
+        std::size_t from = text.find("\"springs\"");
+        for (const json& element : root["springs"]) {
+            const std::size_t at = text.find("{", from == std::string::npos ? 0 : from + 1);
+            from = at == std::string::npos ? from : at;
+            scene.springs.push_back(parse_spring(element, origin + ":" + std::to_string(line_of_offset(text, from))));
+            // Past this spring's ends ("a": {...}, "b": {...}) to the next spring's brace.
+            for (int skip = 0; skip < 2 && from != std::string::npos; ++skip) from = text.find("}", from + 1);
+        }
+    }
+
+    // Names: every body has one, and no two share it.
+    std::vector<std::string> names = body_names(scene);
+    std::sort(names.begin(), names.end());
+    if (const auto twin = std::adjacent_find(names.begin(), names.end()); twin != names.end()) {
+        throw InputError(where(origin, text, *twin) + ": two bodies are named '" + printable(*twin) +
+                         "' (the soft body of the flat keys is 'body'); names must be unique");
+    }
+    return scene;
 }
 
-Params load_scene(const std::string& path, const Params& base) {
+Scene load_scene(const std::string& path, const Scene& base) {
     return parse_scene(read_text_file(path, kMaxSceneBytes, "scene file"), path, base);
 }
 
-std::string scene_to_json(const Params& params) {
-    json root = json::object();
-    for (const auto& info : param_table()) {
-        if (info.type == ParamType::String && param_text(params, info.key).empty()) continue;
-        root[std::string(info.key)] = value_json(params, info);
+std::vector<std::string> body_names(const Scene& scene) {
+    std::vector<std::string> names;
+    if (!scene.params.mesh.empty()) names.push_back("body");
+    for (const auto& body : scene.soft_bodies) names.push_back(body.name);
+    for (const auto& body : scene.rigid_bodies) names.push_back(body.name);
+    return names;
+}
+
+void set_scene_key(Scene& scene, std::string_view key, std::string_view text) {
+    const auto dot = key.find('.');
+    if (dot == std::string_view::npos) {
+        set_param(scene.params, key, text);
+        return;
+    }
+    const std::string name(key.substr(0, dot));
+    const std::string_view sub = key.substr(dot + 1);
+    const auto body_key = [&](Params& params) {
+        const ParamInfo* info = find_param(sub);
+        if (info && info->scope == ParamScope::World) {
+            throw InputError("'" + std::string(sub) + "' is a world key: set it as --set " + std::string(sub) + "=VALUE");
+        }
+        set_param(params, sub, text);
+    };
+    if (name == "body" && !scene.params.mesh.empty()) return body_key(scene.params);
+    for (SoftBodyScene& body : scene.soft_bodies) {
+        if (body.name == name) return body_key(body.params);
+    }
+    for (RigidBodyDef& body : scene.rigid_bodies) {
+        if (body.name == name) return set_rigid_key(body, sub, text);
+    }
+    std::string known;
+    for (const std::string& n : body_names(scene)) known += (known.empty() ? "" : ", ") + n;
+    throw InputError("'" + printable(key) + "': there is no body named '" + printable(name) + "'" +
+                     (known.empty() ? std::string(" (the scene has no bodies)") : " (bodies: " + known + ")"));
+}
+
+WorldDef make_world_def(const Scene& scene) {
+    WorldDef def;
+    def.params = scene.params;
+    if (!scene.params.mesh.empty()) def.soft_bodies.push_back(SoftBodyDef{"body", scene.params, load_mesh(scene.params.mesh)});
+    for (const SoftBodyScene& body : scene.soft_bodies) {
+        Mesh mesh;
+        try {
+            mesh = load_mesh(body.params.mesh);
+        } catch (const InputError& e) {
+            throw InputError("soft body '" + body.name + "': " + e.what());
+        }
+        def.soft_bodies.push_back(SoftBodyDef{body.name, body.params, std::move(mesh)});
+    }
+    for (const RigidBodyDef& body : scene.rigid_bodies) def.rigid_bodies.push_back(make_rigid_body(body));
+    def.springs = scene.springs;
+    return def;
+}
+
+std::string scene_to_json(const Scene& scene) {
+    const auto flat = [](const Params& params, bool body_only) {
+        json object = json::object();
+        for (const auto& info : param_table()) {
+            if (body_only && info.scope != ParamScope::Body) continue;
+            if (info.type == ParamType::String && param_text(params, info.key).empty()) continue;
+            object[std::string(info.key)] = value_json(params, info);
+        }
+        return object;
+    };
+    json root = flat(scene.params, false);
+    if (!scene.soft_bodies.empty()) {
+        json list = json::array();
+        for (const SoftBodyScene& body : scene.soft_bodies) {
+            json object = flat(body.params, true);
+            object["name"] = body.name;
+            list.push_back(object);
+        }
+        root["soft_bodies"] = list;
+    }
+    if (!scene.rigid_bodies.empty()) {
+        json list = json::array();
+        for (const RigidBodyDef& body : scene.rigid_bodies) {
+            json object = json::object();
+            object["name"] = body.name;
+            for (const RigidKeyInfo& info : rigid_key_table()) {
+                json value = rigid_value_json(body, info.key);
+                if (!value.is_null()) object[std::string(info.key)] = std::move(value);
+            }
+            list.push_back(object);
+        }
+        root["rigid_bodies"] = list;
+    }
+    if (!scene.springs.empty()) {
+        json list = json::array();
+        const auto end_json = [](const SpringEndDef& end) {
+            json object = json::object();
+            if (!end.body.empty()) object["body"] = end.body;
+            if (end.point) object["point"] = {end.point->x, end.point->y, end.point->z};
+            if (end.vertex) object["vertex"] = *end.vertex;
+            return object;
+        };
+        for (const SpringDef& spring : scene.springs) {
+            json object = {{"a", end_json(spring.a)}, {"b", end_json(spring.b)}, {"damping", spring.damping}};
+            if (spring.stiffness) object["stiffness"] = *spring.stiffness;
+            if (spring.rest_length) object["rest_length"] = *spring.rest_length;
+            list.push_back(object);
+        }
+        root["springs"] = list;
     }
     // nlohmann's objects keep keys sorted, which keeps saved files stable and diffable.
     try {
         return root.dump(2) + "\n";
     } catch (const json::type_error&) {
-        // JSON text is UTF-8; a path in another encoding cannot be written into it faithfully.
-        throw InputError("parameter 'mesh': the path '" + printable(params.mesh) +
-                         "' is not valid UTF-8, which a scene file cannot hold; rename the mesh file");
+        // JSON text is UTF-8; a path or name in another encoding cannot be written into it faithfully.
+        throw InputError("parameter 'mesh': a path or name in the scene is not valid UTF-8, which a scene file cannot "
+                         "hold; rename the file or the body");
     }
 }
 
-void save_scene(const std::string& path, const Params& params, Overwrite overwrite) {
+void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite) {
     const fs::path target(path);
     fs::path folder = target.parent_path();
     if (folder.empty()) folder = ".";
@@ -200,13 +530,17 @@ void save_scene(const std::string& path, const Params& params, Overwrite overwri
         throw InputError(path + ": already exists; not overwriting it");
     }
 
-    // Store the mesh path relative to the scene's folder, so a folder of presets can move.
-    Params saved = params;
-    if (!saved.mesh.empty()) {
-        const fs::path mesh = fs::absolute(saved.mesh, ec);
-        const fs::path relative = fs::proximate(mesh, fs::absolute(folder, ec), ec);
-        if (!ec && !relative.empty()) saved.mesh = relative.string();
-    }
+    // Store mesh paths relative to the scene's folder, so a folder of presets can move.
+    Scene saved = scene;
+    const auto relative = [&](std::string& mesh) {
+        if (mesh.empty()) return;
+        std::error_code error;
+        const fs::path to = fs::proximate(fs::absolute(mesh, error), fs::absolute(folder, error), error);
+        if (!error && !to.empty()) mesh = to.string();
+    };
+    relative(saved.params.mesh);
+    for (SoftBodyScene& body : saved.soft_bodies) relative(body.params.mesh);
+    for (RigidBodyDef& body : saved.rigid_bodies) relative(body.mesh);
     const std::string text = scene_to_json(saved);  // before anything touches the disk
 
     // A replaced file keeps its permissions; a new one is readable by all, writable by its owner.

@@ -1,13 +1,16 @@
 // The world's tick, in order: forces, integration, contacts, checks. What each of those does
-// lives in its own file: forces.cpp, pair_forces.cpp, ground_contact.cpp, integrators.cpp,
-// divergence.cpp (and stability.cpp, energy.cpp for what the world reports).
+// lives in its own file: forces.cpp, pair_forces.cpp, ground_contact.cpp, contact_solver.cpp,
+// integrators.cpp, divergence.cpp (and stability.cpp, energy.cpp for what the world reports).
 #include "physics/world.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include "contact_solver.h"
 #include "forces.h"
 #include "ground_contact.h"
 #include "integrators.h"
+#include "message_text.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -52,7 +55,15 @@ World::World(WorldDef def, WorldOptions options) : params_(def.params), referenc
         body.kernel = std::make_unique<PairForceKernel>(*pool_);
         soft_.push_back(std::move(body));
     }
+    rigid_ = std::move(def.rigid_bodies);
+    for (const RigidBody& body : rigid_) notes_.insert(notes_.end(), body.notes.begin(), body.notes.end());
+    const std::size_t n = rigid_.size() * rigid::kStateSize;
+    for (auto* y : {&y_, &y_tick_prev_, &y_good_, &y_stage_, &k_[0], &k_[1], &k_[2], &k_[3]}) y->assign(n, 0.0);
+    link_force_on_rigid_.assign(rigid_.size(), {});
+    link_torque_on_rigid_.assign(rigid_.size(), {});
+    link_force_on_particles_.assign(soft_.size(), {});
     build();
+    resolve_links(def.springs);
 }
 
 World::World(const Params& params, Mesh mesh, WorldOptions options) : World(one_body(params, std::move(mesh)), options) {}
@@ -61,6 +72,12 @@ World::~World() = default;
 
 void World::build() {
     for (SoftBody& body : soft_) build_particles(body);
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        std::copy(rigid_[b].initial.begin(), rigid_[b].initial.end(), y_.begin() + std::ptrdiff_t(b * rigid::kStateSize));
+    }
+    y_tick_prev_ = y_;
+    contacts_.clear();
+    previous_contacts_.clear();
     ticks_ = 0;
     status_ = Status::Ok;
     divergence_.clear();
@@ -71,6 +88,71 @@ void World::build() {
 
 void World::reset() { build(); }
 
+// Names to indices, each end checked, and the rest lengths measured where none is given.
+void World::resolve_links(const std::vector<SpringDef>& springs) {
+    for (std::size_t s = 0; s < springs.size(); ++s) {
+        const SpringDef& def = springs[s];
+        const std::string what = "spring " + std::to_string(s + 1);
+        if (!def.stiffness) throw InputError(what + ": needs 'stiffness' (N/m)");
+        if (!(*def.stiffness >= 0.0) || !(def.damping >= 0.0) || (def.rest_length && !(*def.rest_length >= 0.0))) {
+            throw InputError(what + ": stiffness, damping and rest_length must not be negative");
+        }
+        Link link;
+        link.k = *def.stiffness;
+        link.c = def.damping;
+        const auto resolve = [&](const SpringEndDef& end, const char* name) {
+            const std::string where = what + ", end '" + name + "'";
+            LinkEnd out;
+            if (end.body.empty()) {
+                if (end.vertex) throw InputError(where + ": a vertex needs a \"body\"");
+                if (!end.point) throw InputError(where + ": needs a \"body\" or a \"point\" fixed in the world");
+                out.kind = LinkEnd::Kind::World;
+                out.point = *end.point;
+                return out;
+            }
+            for (std::size_t b = 0; b < rigid_.size(); ++b) {
+                if (rigid_[b].name != end.body) continue;
+                if (end.vertex) throw InputError(where + ": rigid body '" + end.body + "' has no vertices; give a \"point\" in its axes");
+                out.kind = LinkEnd::Kind::Rigid;
+                out.body = std::uint32_t(b);
+                out.point = end.point.value_or(Vec3d{});
+                return out;
+            }
+            for (std::size_t b = 0; b < soft_.size(); ++b) {
+                if (soft_[b].name != end.body) continue;
+                if (end.point) throw InputError(where + ": soft body '" + end.body + "' is held at a \"vertex\", not a point");
+                if (!end.vertex) throw InputError(where + ": needs the \"vertex\" of soft body '" + end.body + "'");
+                const auto& map = soft_[b].mesh.vertex_to_particle;
+                if (*end.vertex < 0 || std::size_t(*end.vertex) >= map.size()) {
+                    throw InputError(where + ": vertex " + std::to_string(*end.vertex) + " does not exist (body '" +
+                                     end.body + "' has " + std::to_string(map.size()) + " vertices, numbered from 0)");
+                }
+                out.kind = LinkEnd::Kind::Soft;
+                out.body = std::uint32_t(b);
+                out.particle = map[std::size_t(*end.vertex)];
+                return out;
+            }
+            throw InputError(where + ": there is no body named '" + printable(end.body) + "'");
+        };
+        link.a = resolve(def.a, "a");
+        link.b = resolve(def.b, "b");
+        link.l0 = def.rest_length ? *def.rest_length : length(link_end_position(link.b) - link_end_position(link.a));
+        links_.push_back(link);
+    }
+}
+
+Vec3d World::link_end_position(const LinkEnd& end) const {
+    switch (end.kind) {
+        case LinkEnd::Kind::World: return end.point;
+        case LinkEnd::Kind::Rigid: {
+            const RigidMotion m = rigid_motion(end.body);
+            return m.x + m.R * end.point;
+        }
+        case LinkEnd::Kind::Soft: return Vec3d(soft_[end.body].x[end.particle]);
+    }
+    return {};
+}
+
 void World::set_threads(int threads) {
     for (SoftBody& body : soft_) body.kernel.reset();
     pool_ = std::make_unique<ThreadPool>(std::max(1, threads));
@@ -79,7 +161,8 @@ void World::set_threads(int threads) {
 
 void World::set_params(const Params& params) {
     validate(params);
-    if (!soft_.empty()) {
+    // The flat keys' soft body, when there is one, takes the body keys.
+    if (!soft_.empty() && soft_.front().name == "body") {
         check_pins(params, soft_.front().mesh);
         soft_.front().params = params;
         set_particle_mass(soft_.front(), params.particle_mass);
@@ -110,8 +193,59 @@ void World::update_substeps() {
 // ---------------------------------------------------------------------------------------------
 // Forces at one stage of the step: stage 0 is the current state, stages 1 to 3 are RK4's.
 // ---------------------------------------------------------------------------------------------
+
+// Eq. 21, 22 and 33: every link's force on its two ends, from the bodies' state at this stage.
+void World::evaluate_links(int stage) {
+    std::fill(link_force_on_rigid_.begin(), link_force_on_rigid_.end(), Vec3d{});
+    std::fill(link_torque_on_rigid_.begin(), link_torque_on_rigid_.end(), Vec3d{});
+    for (auto& list : link_force_on_particles_) list.clear();
+    const std::vector<double>& y = stage == 0 ? y_ : y_stage_;
+    const auto end_state = [&](const LinkEnd& end, Vec3d& p, Vec3d& u, RigidMotion& m) {
+        switch (end.kind) {
+            case LinkEnd::Kind::World:
+                p = end.point;
+                u = {};
+                break;
+            case LinkEnd::Kind::Rigid: {
+                m = softbody::rigid_motion(rigid_[end.body], &y[end.body * rigid::kStateSize]);
+                const Vec3d r = m.R * end.point;
+                p = m.x + r;
+                u = m.v + cross(m.omega, r);  // the velocity of a point of a turning body
+                break;
+            }
+            case LinkEnd::Kind::Soft: {
+                const SoftBody& body = soft_[end.body];
+                const std::uint32_t i = end.particle;
+                const bool staged = stage != 0;
+                const Vec3 x = staged ? body.x_tmp[i] : body.x[i], v = staged ? body.v_stage[i] : body.v[i];
+                p = Vec3d(x);
+                u = Vec3d(v);
+                break;
+            }
+        }
+    };
+    const auto apply = [&](const LinkEnd& end, const Vec3d& p, const RigidMotion& m, const Vec3d& F) {
+        if (end.kind == LinkEnd::Kind::Rigid) {
+            link_force_on_rigid_[end.body] += F;
+            link_torque_on_rigid_[end.body] += cross(p - m.x, F);  // Eq. 33: r x F
+        } else if (end.kind == LinkEnd::Kind::Soft) {
+            link_force_on_particles_[end.body].emplace_back(end.particle, to_float(F));
+        }
+    };
+    for (const Link& link : links_) {
+        Vec3d p_a, u_a, p_b, u_b;
+        RigidMotion m_a, m_b;
+        end_state(link.a, p_a, u_a, m_a);
+        end_state(link.b, p_b, u_b, m_b);
+        const Vec3d F = link_force(link, p_a, u_a, p_b, u_b);
+        apply(link.a, p_a, m_a, F);
+        apply(link.b, p_b, m_b, -F);
+    }
+}
+
 void World::evaluate_forces(int stage, bool record_contacts) {
     const float h = params_.dt / static_cast<float>(substeps_);
+    if (!links_.empty()) evaluate_links(stage);
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         SoftBody& body = soft_[b];
         const std::size_t n = body.particle_count();
@@ -129,7 +263,10 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         if (body.params.drag_coefficient > 0.0f && params_.air_density > 0.0f) {
             add_drag(body.force, s, n, params_.air_density, body.params.drag_coefficient, body.rest_radius);
         }
-        if (grab_ && grab_->body == b && grab_->particle < n) add_grab(body.force, s, *grab_, body.mass, h);
+        if (grab_ && !grab_->rigid && grab_->body == b && grab_->particle < n) add_grab(body.force, s, *grab_, body.mass, h);
+        if (!links_.empty()) {
+            for (const auto& [particle, F] : link_force_on_particles_[b]) body.force.add(particle, F);
+        }
         // Friction last: Eq. 24 and 25 need everything else that pushes the particle.
         apply_ground_friction(body, s, params_, record_contacts);
 
@@ -140,45 +277,121 @@ void World::evaluate_forces(int stage, bool record_contacts) {
             a.z[i] = body.force.z[i] * body.inv_mass[i];
         }
     }
+    // Rigid bodies: the net force and torque (Eq. 26, 27, 33), then Listing 9's derivative.
+    const std::vector<double>& y = stage == 0 ? y_ : y_stage_;
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        const RigidBody& body = rigid_[b];
+        const double* state = &y[b * rigid::kStateSize];
+        Wrench w;
+        if (!body.fixed) {
+            const RigidMotion m = softbody::rigid_motion(body, state);
+            add_rigid_gravity(w, body, params_.gravity);
+            if (body.drag_coefficient > 0.0f && params_.air_density > 0.0f) add_rigid_drag(w, body, m, params_.air_density);
+            if (grab_ && grab_->rigid && grab_->body == b) add_rigid_grab(w, body, m, *grab_, h);
+            if (!links_.empty()) {
+                w.F += link_force_on_rigid_[b];
+                w.tau += link_torque_on_rigid_[b];
+            }
+        }
+        rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
 // One step of h: forces, the integrator, contacts.
 // ---------------------------------------------------------------------------------------------
 void World::step(float h) {
+    const double hd = h;
+    if (!rigid_.empty()) y_step_start_ = y_;
     switch (params_.integrator) {
         case Integrator::Verlet:
-            for (SoftBody& body : soft_) verlet_start(body, h);
-            evaluate_forces(0, true);
-            for (SoftBody& body : soft_) verlet_update(body, h);
-            break;
         case Integrator::SymplecticEuler:
+            if (params_.integrator == Integrator::Verlet) {
+                for (SoftBody& body : soft_) verlet_start(body, h);
+            }
             evaluate_forces(0, true);
-            for (SoftBody& body : soft_) symplectic_euler_update(body, h);
+            for (SoftBody& body : soft_) {
+                if (params_.integrator == Integrator::Verlet) verlet_update(body, h);
+                else symplectic_euler_update(body, h);
+            }
+            if (!rigid_.empty()) {
+                // Momenta first, then positions from the new momenta (Verlet is this for a rigid body).
+                flat_euler_momenta(y_, k_[0], hd);
+                advance_rigid_positions(hd);
+            }
             break;
         case Integrator::ExplicitEuler:
             evaluate_forces(0, true);
             for (SoftBody& body : soft_) explicit_euler_update(body, h);
+            flat_euler(y_, k_[0], hd);  // Listing 9 / 10: S += dt dS/dt, every number from the old state
             break;
         case Integrator::RK4:
             for (SoftBody& body : soft_) rk4_begin(body);
             evaluate_forces(0, true);
             for (int s = 1; s <= 3; ++s) {
                 for (SoftBody& body : soft_) rk4_stage(body, s, h);
+                flat_rk4_stage(y_, k_[s - 1], rk4_stage_offset(s, hd), y_stage_);
                 evaluate_forces(s, false);
                 for (SoftBody& body : soft_) rk4_accumulate(body, s);
             }
             for (SoftBody& body : soft_) rk4_finish(body, h);
+            flat_rk4_finish(y_, k_[0], k_[1], k_[2], k_[3], hd);
             break;
     }
     for (SoftBody& body : soft_) {
         hold_pins(body);
         resolve_ground_contacts(body, params_, h);
     }
+    if (!rigid_.empty()) solve_rigid_contacts(h);
+}
+
+// Symplectic Euler's second half for the rigid bodies: x and q from the step's start, moved by
+// the momenta as they are now (dx/dt = P / m, dq/dt = 1/2 w q with w from the new L).
+void World::advance_rigid_positions(double h) {
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        const std::size_t at = b * rigid::kStateSize;
+        double start[rigid::kStateSize];
+        std::copy_n(&y_step_start_[at], rigid::kStateSize, start);
+        for (int k : {rigid::P, rigid::P + 1, rigid::P + 2, rigid::L, rigid::L + 1, rigid::L + 2}) start[k] = y_[at + std::size_t(k)];
+        rigid_derivative(rigid_[b], start, {}, {}, &k_[1][at]);
+        for (int k : {rigid::X, rigid::X + 1, rigid::X + 2, rigid::Q, rigid::Q + 1, rigid::Q + 2, rigid::Q + 3}) {
+            y_[at + std::size_t(k)] = start[k] + h * k_[1][at + std::size_t(k)];
+        }
+    }
+}
+
+// Eq. 37 and 38 at every contact of the step, with the ground a static body. The contacts are
+// found where the integrator took the bodies (their predicted positions), the impulses change
+// the momenta, and then, for symplectic Euler and Verlet, whose positions follow from the new
+// momenta, the positions are advanced again from the step's start with them (Box2D's order:
+// velocities, then positions): a body resting on the ground does not sink into it each step
+// only to be pushed back out. What penetration is left, the solver's position pass removes.
+void World::solve_rigid_contacts(float h) {
+    std::swap(previous_contacts_, contacts_);
+    contacts_.clear();
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        const std::size_t at = b * rigid::kStateSize;
+        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[at], &y_step_start_[at], params_, contacts_);
+    }
+    std::vector<SolverBody> bodies(rigid_.size());
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        bodies[b] = {&y_[b * rigid::kStateSize], rigid_[b].inv_mass, rigid_[b].J_body_inv};
+    }
+    SolverSettings settings;
+    settings.h = h;
+    settings.speculative = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
+    // As for particles: impacts slower than two steps of gravity are resting contact.
+    settings.bounce_speed = 2.0 * std::abs(double(params_.gravity.z)) * double(h);
+    solve_contact_velocities(contacts_, previous_contacts_, bodies, settings);
+    if (settings.speculative && !contacts_.empty()) {
+        advance_rigid_positions(h);
+        apply_bounce_shifts(contacts_, bodies);
+    }
+    solve_contact_positions(contacts_, bodies, settings);
 }
 
 // ---------------------------------------------------------------------------------------------
-// The tick: substeps, then the checks; a tick that diverged is taken back.
+// The tick: substeps, renormalisation, then the checks; a tick that diverged is taken back.
 // ---------------------------------------------------------------------------------------------
 void World::tick() {
     if (status_ != Status::Ok) return;
@@ -190,9 +403,22 @@ void World::tick() {
         copy(body.verlet_step, body.verlet_step_good);
         body.verlet_h_good = body.verlet_h;
     }
+    y_tick_prev_ = y_;
+    y_good_ = y_;
     const float h = params_.dt / static_cast<float>(substeps_);
     for (int s = 0; s < substeps_; ++s) step(h);
     ++ticks_;
+    // Listing 9: every few ticks, bring each quaternion back to unit length.
+    if (params_.renormalize_every > 0 && ticks_ % std::uint64_t(params_.renormalize_every) == 0) {
+        for (std::size_t b = 0; b < rigid_.size(); ++b) {
+            double* q = &y_[b * rigid::kStateSize + rigid::Q];
+            const Quat unit = Quat{q[0], q[1], q[2], q[3]}.normalized();
+            q[0] = unit.w;
+            q[1] = unit.x;
+            q[2] = unit.y;
+            q[3] = unit.z;
+        }
+    }
     check_divergence();
     if (status_ != Status::Ok) {
         // Keep the last finite state on show; nothing downstream ever sees a NaN.
@@ -203,6 +429,8 @@ void World::tick() {
             copy(body.x, body.x_tick_prev);
             body.verlet_h = body.verlet_h_good;
         }
+        y_ = y_good_;
+        y_tick_prev_ = y_;
         --ticks_;
     }
 }

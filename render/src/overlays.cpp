@@ -22,6 +22,10 @@ constexpr glm::vec4 kNormalColor{0.35f, 0.45f, 0.95f, 0.9f};
 constexpr glm::vec4 kForceColor{0.95f, 0.30f, 0.75f, 1.0f};
 constexpr glm::vec4 kGrabColor{0.20f, 0.75f, 1.00f, 1.0f};  // the mouse's pull
 constexpr glm::vec4 kComLine{0.12f, 0.12f, 0.14f, 0.75f};
+constexpr glm::vec4 kOmegaColor{0.98f, 0.78f, 0.12f, 1.0f};     // angular velocity
+constexpr glm::vec4 kMomentumColor{0.55f, 0.30f, 0.95f, 1.0f};  // angular momentum
+constexpr glm::vec4 kContactColor{0.95f, 0.15f, 0.25f, 1.0f};
+constexpr glm::vec4 kLinkColor{0.20f, 0.22f, 0.28f, 1.0f};
 constexpr float kStrainForFullColor = 0.15f;  // |l / l0 - 1| that gets the full colour
 
 glm::vec4 strain_color(const glm::vec4& rest, float strain) {
@@ -37,6 +41,22 @@ struct Sequence {
         return static_cast<std::uint32_t>((state >> 33) % bound);
     }
 };
+
+// An arrow from `from` along `v` (already scaled to metres): a line and a two-stroke head that
+// faces the camera.
+void arrow(const Camera& cam, const glm::vec3& from, const glm::vec3& v, float min_length, float max_head,
+           const glm::vec4& color, float width, std::vector<LineInstance>& lines) {
+    const glm::vec3 tip = from + v;
+    const float len = glm::length(tip - from);
+    if (len < min_length) return;
+    const glm::vec3 dir = (tip - from) / len;
+    glm::vec3 side = glm::cross(dir, glm::normalize(tip - cam.eye()));
+    side = glm::dot(side, side) > 1e-8f ? glm::normalize(side) : cam.right();
+    const float head = std::min(0.3f * len, max_head);
+    lines.push_back({from, tip, color, width});
+    lines.push_back({tip, tip - dir * head + side * (0.5f * head), color, width});
+    lines.push_back({tip, tip - dir * head - side * (0.5f * head), color, width});
+}
 
 }  // namespace
 
@@ -108,13 +128,21 @@ std::vector<SpringSample> sample_springs(const Mesh& mesh, std::size_t budget) {
     return springs;
 }
 
-void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std::span<const SurfaceVertex> surface,
-                           const BodyShape& shape, OverlayGeometry& out) {
+void OverlayBuilder::build(const Frame& frame, std::span<const SoftBodyDrawn> soft, float scene_size, OverlayGeometry& out) {
     out.lines.clear();
     out.spheres.clear();
     out.lines_on_top.clear();
     out.spheres_on_top.clear();
-    const BodyView& body = frame.body;
+    soft_.resize(soft.size());
+    for (std::size_t b = 0; b < soft.size(); ++b) build_soft(frame, frame.soft_bodies[b], soft[b], b == 0, soft_[b], out);
+    build_rigid(frame, scene_size, out);
+}
+
+void OverlayBuilder::build_soft(const Frame& frame, const BodyView& body, const SoftBodyDrawn& drawn, bool first,
+                                SoftCache& cache, OverlayGeometry& out) {
+    const std::span<const glm::vec3> x = drawn.particles;
+    const std::span<const SurfaceVertex> surface = drawn.surface;
+    const BodyShape& shape = drawn.shape;
     const Overlays& on = frame.overlays;
     if (!body.mesh || x.empty()) return;
     const std::size_t n = x.size();
@@ -126,16 +154,16 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std
 
     if (on.springs) {
         const std::size_t triangles = body.mesh->triangle_count();
-        if (spring_mesh_ != body.mesh || spring_mesh_particles_ != n || spring_mesh_triangles_ != triangles ||
-            spring_budget_ != frame.appearance.max_springs) {
-            springs_ = sample_springs(*body.mesh, frame.appearance.max_springs);
-            spring_mesh_ = body.mesh;
-            spring_mesh_particles_ = n;
-            spring_mesh_triangles_ = triangles;
-            spring_budget_ = frame.appearance.max_springs;
+        if (cache.spring_mesh != body.mesh || cache.spring_mesh_particles != n || cache.spring_mesh_triangles != triangles ||
+            cache.spring_budget != frame.appearance.max_springs) {
+            cache.springs = sample_springs(*body.mesh, frame.appearance.max_springs);
+            cache.spring_mesh = body.mesh;
+            cache.spring_mesh_particles = n;
+            cache.spring_mesh_triangles = triangles;
+            cache.spring_budget = frame.appearance.max_springs;
         }
         const bool strain = body.rest_positions.size == n;
-        for (const SpringSample& spring : springs_) {
+        for (const SpringSample& spring : cache.springs) {
             // Surface springs light and fine: they outline; the ones across the body stand out.
             const glm::vec4 rest = spring.surface ? kSurfaceSpringRest : kSpringRest;
             glm::vec4 color = rest;
@@ -166,34 +194,25 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std
     }
 
     if (on.velocities && body.velocities.size == n) {
-        const Camera& cam = frame.camera;
         const float scale = frame.appearance.velocity_scale;
-        auto arrow = [&](const glm::vec3& from, const glm::vec3& v, const glm::vec4& color, float width,
-                         std::vector<LineInstance>& lines) {
-            const glm::vec3 tip = from + v * scale;
-            const float len = glm::length(tip - from);
-            if (len < 0.02f * r_body) return;
-            const glm::vec3 dir = (tip - from) / len;
-            glm::vec3 side = glm::cross(dir, glm::normalize(tip - cam.eye()));
-            side = glm::dot(side, side) > 1e-8f ? glm::normalize(side) : cam.right();
-            const float head = std::min(0.3f * len, 0.15f * r_body);
-            lines.push_back({from, tip, color, width});
-            lines.push_back({tip, tip - dir * head + side * (0.5f * head), color, width});
-            lines.push_back({tip, tip - dir * head - side * (0.5f * head), color, width});
+        const auto velocity_arrow = [&](const glm::vec3& from, const glm::vec3& v, const glm::vec4& color, float width,
+                                        std::vector<LineInstance>& lines) {
+            arrow(frame.camera, from, v * scale, 0.02f * r_body, 0.15f * r_body, color, width, lines);
         };
         // A sample of the particles' own velocities, thin...
         const std::size_t budget = std::max<std::size_t>(1, frame.appearance.max_arrows);
         const std::size_t stride = (n + budget - 1) / budget;
         glm::dvec3 mean(0.0);
         for (std::size_t i = 0; i < n; ++i) mean += glm::dvec3(body.velocities[i]);
-        for (std::size_t i = 0; i < n; i += stride) arrow(x[i], body.velocities[i], kVelocityColor, 1.6f, out.lines);
+        for (std::size_t i = 0; i < n; i += stride) velocity_arrow(x[i], body.velocities[i], kVelocityColor, 1.6f, out.lines);
         // ...and the centre of mass's, bold and always in view.
-        arrow(shape.centre_of_mass, glm::vec3(mean / double(n)), kComVelocityColor, 3.5f, out.lines_on_top);
+        velocity_arrow(shape.centre_of_mass, glm::vec3(mean / double(n)), kComVelocityColor, 3.5f, out.lines_on_top);
     }
 
     if (frame.appearance.body == BodyStyle::Wireframe && body.mesh->triangle_count() > 0) {
         // Every edge of the surface once, in the body's colour.
-        if (edge_mesh_ != body.mesh || edge_mesh_triangles_ != body.mesh->triangle_count()) {
+        if (cache.edge_mesh != body.mesh || cache.edge_mesh_triangles != body.mesh->triangle_count()) {
+            auto& edges_ = cache.edges;
             edges_.clear();
             const auto& rv = body.mesh->render_vertices;
             const auto& t = body.mesh->triangles;
@@ -206,11 +225,11 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std
             }
             std::sort(edges_.begin(), edges_.end());
             edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
-            edge_mesh_ = body.mesh;
-            edge_mesh_triangles_ = body.mesh->triangle_count();
+            cache.edge_mesh = body.mesh;
+            cache.edge_mesh_triangles = body.mesh->triangle_count();
         }
         const glm::vec4 color(frame.appearance.body_color, 1.0f);
-        for (const auto& [a, b] : edges_) {
+        for (const auto& [a, b] : cache.edges) {
             if (a < n && b < n) out.lines.push_back({x[a], x[b], color, 1.4f});
         }
     }
@@ -242,7 +261,7 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std
         }
     }
 
-    if (on.grab && on.grab_particle < n) {
+    if (first && on.grab && !on.grab_on_rigid && on.grab_particle < n) {
         const glm::vec3 from = x[on.grab_particle];
         out.lines_on_top.push_back({from, on.grab_target, kGrabColor, 2.5f});
         out.spheres_on_top.push_back({from, 1.6f * particle_radius, kGrabColor});
@@ -261,6 +280,65 @@ void OverlayBuilder::build(const Frame& frame, std::span<const glm::vec3> x, std
             out.lines_on_top.push_back({foot - glm::vec3(a, 0, 0), foot + glm::vec3(a, 0, 0), kComLine, 2.0f});
             out.lines_on_top.push_back({foot - glm::vec3(0, a, 0), foot + glm::vec3(0, a, 0), kComLine, 2.0f});
         }
+    }
+}
+
+// Rigid bodies' markers (centre of mass, velocity, omega and L), the springs between bodies,
+// the contacts, and the pull on a rigid body.
+void OverlayBuilder::build_rigid(const Frame& frame, float scene_size, OverlayGeometry& out) {
+    const Overlays& on = frame.overlays;
+    const Camera& cam = frame.camera;
+    const float size = std::max(scene_size, 1e-3f);
+    for (const RigidBodyView& body : frame.rigid_bodies) {
+        if (body.fixed) continue;
+        const glm::vec3 c(model_matrix(body)[3]);
+        const float r = std::max(body.radius, 1e-3f);
+        if (on.center_of_mass) {
+            out.spheres_on_top.push_back({c, 0.06f * r, kComColor});
+            if (frame.appearance.ground) {
+                out.lines_on_top.push_back({c, glm::vec3(c.x, c.y, frame.appearance.ground_height), kComLine, 1.5f});
+            }
+        }
+        if (on.velocities) {
+            arrow(cam, c, body.velocity * frame.appearance.velocity_scale, 0.02f * r, 0.15f * r, kComVelocityColor, 3.0f,
+                  out.lines_on_top);
+        }
+        if (on.angular) {
+            // omega: one body radius per half turn a second (pi rad/s); L the same, per the
+            // angular momentum of that spin about an axis through a point mass at the radius.
+            const float per_omega = r / 3.14159265f;
+            arrow(cam, c, body.angular_velocity * per_omega, 0.02f * r, 0.2f * r, kOmegaColor, 3.0f, out.lines_on_top);
+            const float unit_L = body.mass * r * r;
+            if (unit_L > 0.0f) {
+                arrow(cam, c, body.angular_momentum * (per_omega / unit_L), 0.02f * r, 0.2f * r, kMomentumColor, 2.0f,
+                      out.lines_on_top);
+            }
+        }
+    }
+    if (on.links) {
+        for (const LinkView& link : frame.links) {
+            glm::vec4 color = kLinkColor;
+            if (link.rest_length > 0.0f) color = strain_color(kLinkColor, glm::length(link.b - link.a) / link.rest_length - 1.0f);
+            out.lines.push_back({link.a, link.b, color, 2.5f});
+            out.spheres.push_back({link.a, 0.025f * size, color});
+            out.spheres.push_back({link.b, 0.025f * size, color});
+        }
+    }
+    if (on.contacts && !frame.contacts.empty()) {
+        // The normal at each contact, as long as its impulse relative to the largest this step.
+        float largest = 0.0f;
+        for (const ContactView& c : frame.contacts) largest = std::max(largest, c.impulse);
+        for (const ContactView& c : frame.contacts) {
+            out.spheres_on_top.push_back({c.point, 0.02f * size, kContactColor});
+            const float len = largest > 0.0f ? 0.4f * size * c.impulse / largest : 0.0f;
+            arrow(cam, c.point, c.normal * std::max(len, 0.08f * size), 0.0f, 0.06f * size, kContactColor, 2.0f,
+                  out.lines_on_top);
+        }
+    }
+    if (on.grab && on.grab_on_rigid) {
+        out.lines_on_top.push_back({on.grab_point, on.grab_target, kGrabColor, 2.5f});
+        out.spheres_on_top.push_back({on.grab_point, 0.03f * size, kGrabColor});
+        out.spheres_on_top.push_back({on.grab_target, 0.02f * size, kGrabColor});
     }
 }
 

@@ -56,20 +56,34 @@ struct OverlayGeometry {
     std::vector<SphereInstance> spheres_on_top;
 };
 
+// A soft body as drawn this frame: its particles, its streamed vertices (positions and
+// recomputed normals; empty when it has no surface this frame) and its shape.
+struct SoftBodyDrawn {
+    std::span<const glm::vec3> particles;
+    std::span<const SurfaceVertex> surface;
+    BodyShape shape;
+};
+
 class OverlayBuilder {
 public:
-    // `surface`: the streamed vertices (positions and recomputed normals), empty when the body
-    // has no surface this frame.
-    void build(const Frame& frame, std::span<const glm::vec3> particles, std::span<const SurfaceVertex> surface,
-               const BodyShape& shape, OverlayGeometry& out);
+    // `scene_size`: the largest body's radius, which sizes the markers of rigid bodies, links
+    // and contacts.
+    void build(const Frame& frame, std::span<const SoftBodyDrawn> soft, float scene_size, OverlayGeometry& out);
 
 private:
-    const Mesh* spring_mesh_ = nullptr;
-    std::size_t spring_mesh_particles_ = 0, spring_mesh_triangles_ = 0, spring_budget_ = 0;
-    std::vector<SpringSample> springs_;
-    const Mesh* edge_mesh_ = nullptr;
-    std::size_t edge_mesh_triangles_ = 0;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges_;  // the surface's edges, for wireframe
+    // What one soft body's overlays keep between frames (the samples are costly to pick).
+    struct SoftCache {
+        const Mesh* spring_mesh = nullptr;
+        std::size_t spring_mesh_particles = 0, spring_mesh_triangles = 0, spring_budget = 0;
+        std::vector<SpringSample> springs;
+        const Mesh* edge_mesh = nullptr;
+        std::size_t edge_mesh_triangles = 0;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // the surface's edges, for wireframe
+    };
+    void build_soft(const Frame& frame, const BodyView& body, const SoftBodyDrawn& drawn, bool first, SoftCache& cache,
+                    OverlayGeometry& out);
+    void build_rigid(const Frame& frame, float scene_size, OverlayGeometry& out);
+    std::vector<SoftCache> soft_;
 };
 
 }  // namespace softbody::render

@@ -1,8 +1,10 @@
 // The frame, pass by pass:
-//   1. the body's particles interpolated, normals recomputed, vertices streamed (deform.h)
-//   2. the sun's shadow map: depth moments of the body (and overlay spheres), mipmapped
-//   3. multisampled: the floor (grid, soft shadow, contact darkening), the solid body, the sky
-//      where nothing else is, the overlays and a see-through body, the always-visible markers
+//   1. each soft body's particles interpolated, normals recomputed, vertices streamed
+//      (deform.h); each rigid body's fixed mesh uploaded once and its model matrix made
+//   2. the sun's shadow map: depth moments of the bodies (and overlay spheres), mipmapped
+//   3. multisampled: the floor (grid, soft shadows, contact darkening), the solid bodies, the
+//      sky where nothing else is, the overlays and see-through soft bodies, the always-visible
+//      markers
 //   4. resolve the samples, copy to the caller's framebuffer
 #include "render/renderer.h"
 
@@ -64,6 +66,40 @@ float grid_spacing(float radius) {
 
 }  // namespace
 
+// One mesh on the GPU: its vertices (streamed every frame for a soft body, uploaded once for
+// a rigid one), its triangles, and each vertex's material coordinates.
+struct MeshGpu {
+    gl::VertexArray vao;
+    gl::Buffer vbo, ebo, material;
+    const Mesh* mesh = nullptr;  // what the buffers hold (with its sizes, to notice a new mesh)
+    std::size_t render_vertices = 0, indices = 0;
+    bool closed = false;         // every edge shared by two triangles: back faces can be culled
+
+    void create();
+    // Uploads the triangles and material coordinates when `m` is not what the buffers hold;
+    // returns whether it did.
+    bool upload_topology(const Mesh& m);
+    GLsizei index_count() const { return static_cast<GLsizei>(indices); }
+};
+
+// A soft body this frame: its particles, its recomputed surface, its shape.
+struct SoftDraw {
+    MeshGpu gpu;
+    std::vector<glm::vec3> particles;
+    DeformedSurface surface;
+    BodyShape shape;
+    bool has_surface = false;
+};
+
+// A rigid body this frame: its fixed mesh, and where it is.
+struct RigidDraw {
+    MeshGpu gpu;
+    DeformedSurface surface;  // computed once, in body axes
+    glm::mat4 model{1.0f};
+    glm::mat3 normal_matrix{1.0f};
+    glm::vec3 low{0.0f}, high{0.0f};  // world bounding box
+};
+
 struct Renderer::State {
     RendererInfo info;
     DrawTimings timings;
@@ -71,13 +107,8 @@ struct Renderer::State {
     ShaderProgram sky, ground, body, shadow, sphere_shadow, line, sphere;
     gl::VertexArray empty_vao;  // for draws that make their vertices from gl_VertexID
 
-    // The body: streamed vertices, fixed indices.
-    gl::VertexArray body_vao;
-    gl::Buffer body_vbo, body_ebo;
-    gl::Buffer body_material;  // fixed: each vertex's place in the body at rest (see body.frag.glsl)
-    const Mesh* uploaded_mesh = nullptr;
-    std::size_t uploaded_render_vertices = 0, uploaded_indices = 0;
-    bool closed_mesh = false;  // every edge shared by two triangles: back faces can be culled
+    std::vector<SoftDraw> soft;
+    std::vector<RigidDraw> rigid;
 
     // Overlays: one instance buffer each for lines and spheres.
     gl::VertexArray line_vao, sphere_vao;
@@ -93,16 +124,14 @@ struct Renderer::State {
     gl::Texture shadow_texture;
     gl::Renderbuffer shadow_depth;
 
-    // Scratch kept between frames.
-    std::vector<glm::vec3> particles;
-    DeformedSurface surface;
     OverlayBuilder overlay_builder;
     OverlayGeometry overlays;
 
     void build_programs();
     void build_buffers();
     void ensure_targets(int width, int height, int samples);
-    void upload_topology(const Mesh& mesh);
+    void prepare_soft(const Frame& frame);
+    void prepare_rigid(const Frame& frame);
     void set_lighting(const ShaderProgram& program, const glm::vec3& eye, const glm::mat4& shadow_matrix,
                       bool shadows, float penumbra_scale, float normal_offset) const;
     void draw_lines(const std::vector<LineInstance>& lines, const glm::mat4& view_projection, int width, int height,
@@ -150,22 +179,6 @@ void Renderer::State::build_programs() {
 
 void Renderer::State::build_buffers() {
     empty_vao = gl::make_vertex_array();
-
-    body_vao = gl::make_vertex_array();
-    body_vbo = gl::make_buffer();
-    body_ebo = gl::make_buffer();
-    glBindVertexArray(body_vao.id());
-    glBindBuffer(GL_ARRAY_BUFFER, body_vbo.id());
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, position)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, normal)));
-    body_material = gl::make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, body_material.id());
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, body_ebo.id());
-
     line_vao = gl::make_vertex_array();
     line_vbo = gl::make_buffer();
     glBindVertexArray(line_vao.id());
@@ -250,44 +263,122 @@ void Renderer::State::ensure_targets(int width, int height, int samples) {
     fb_samples = samples;
 }
 
-void Renderer::State::upload_topology(const Mesh& mesh) {
-    if (uploaded_mesh == &mesh && uploaded_render_vertices == mesh.render_vertices.size() &&
-        uploaded_indices == mesh.triangles.size()) {
-        return;
-    }
-    glBindVertexArray(body_vao.id());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.triangles.size() * sizeof(std::uint32_t)),
-                 mesh.triangles.data(), GL_STATIC_DRAW);
+void MeshGpu::create() {
+    vao = gl::make_vertex_array();
+    vbo = gl::make_buffer();
+    ebo = gl::make_buffer();
+    material = gl::make_buffer();
+    glBindVertexArray(vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, vbo.id());
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, position)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), reinterpret_cast<void*>(offsetof(SurfaceVertex, normal)));
+    glBindBuffer(GL_ARRAY_BUFFER, material.id());
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo.id());
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+bool MeshGpu::upload_topology(const Mesh& m) {
+    if (!vao) create();
+    if (mesh == &m && render_vertices == m.render_vertices.size() && indices == m.triangles.size()) return false;
+    glBindVertexArray(vao.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.triangles.size() * sizeof(std::uint32_t)),
+                 m.triangles.data(), GL_STATIC_DRAW);
     glBindVertexArray(0);
     // Material coordinates: the mesh's own vertex positions about their centre, in units of the
     // mesh's radius. They move with the body, so a pattern drawn from them shows it roll.
     glm::dvec3 centre(0.0);
-    for (const Vec3& p : mesh.positions) centre += glm::dvec3(p.x, p.y, p.z);
-    centre /= double(std::max<std::size_t>(mesh.positions.size(), 1));
+    for (const Vec3& p : m.positions) centre += glm::dvec3(p.x, p.y, p.z);
+    centre /= double(std::max<std::size_t>(m.positions.size(), 1));
     double radius = 1e-9;
-    for (const Vec3& p : mesh.positions) radius = std::max(radius, glm::length(glm::dvec3(p.x, p.y, p.z) - centre));
-    std::vector<glm::vec3> material(mesh.render_vertices.size());
-    for (std::size_t i = 0; i < material.size(); ++i) {
-        const Vec3& p = mesh.positions[mesh.render_vertices[i].particle];
-        material[i] = glm::vec3((glm::dvec3(p.x, p.y, p.z) - centre) / radius);
+    for (const Vec3& p : m.positions) radius = std::max(radius, glm::length(glm::dvec3(p.x, p.y, p.z) - centre));
+    std::vector<glm::vec3> coordinates(m.render_vertices.size());
+    for (std::size_t i = 0; i < coordinates.size(); ++i) {
+        const Vec3& p = m.positions[m.render_vertices[i].particle];
+        coordinates[i] = glm::vec3((glm::dvec3(p.x, p.y, p.z) - centre) / radius);
     }
-    glBindBuffer(GL_ARRAY_BUFFER, body_material.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(material.size() * sizeof(glm::vec3)), material.data(),
+    glBindBuffer(GL_ARRAY_BUFFER, material.id());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(coordinates.size() * sizeof(glm::vec3)), coordinates.data(),
                  GL_STATIC_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     // Closed: every edge (on particles) belongs to exactly two triangles.
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-    for (std::size_t k = 0; k + 2 < mesh.triangles.size(); k += 3) {
+    for (std::size_t k = 0; k + 2 < m.triangles.size(); k += 3) {
         for (std::size_t e = 0; e < 3; ++e) {
-            std::uint32_t a = mesh.render_vertices[mesh.triangles[k + e]].particle;
-            std::uint32_t b = mesh.render_vertices[mesh.triangles[k + (e + 1) % 3]].particle;
+            std::uint32_t a = m.render_vertices[m.triangles[k + e]].particle;
+            std::uint32_t b = m.render_vertices[m.triangles[k + (e + 1) % 3]].particle;
             ++edges[{std::min(a, b), std::max(a, b)}];
         }
     }
-    closed_mesh = !edges.empty() && std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
-    uploaded_mesh = &mesh;
-    uploaded_render_vertices = mesh.render_vertices.size();
-    uploaded_indices = mesh.triangles.size();
+    closed = !edges.empty() && std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
+    mesh = &m;
+    render_vertices = m.render_vertices.size();
+    indices = m.triangles.size();
+    return true;
+}
+
+// Each soft body's particles this frame, its shape, and its surface streamed to the GPU.
+void Renderer::State::prepare_soft(const Frame& frame) {
+    const auto start = Clock::now();
+    const Appearance& look = frame.appearance;
+    soft.resize(frame.soft_bodies.size());
+    for (std::size_t b = 0; b < soft.size(); ++b) {
+        const BodyView& view = frame.soft_bodies[b];
+        SoftDraw& d = soft[b];
+        interpolate_positions(view, frame.debug.body_offset, d.particles);
+        d.shape = measure_body(d.particles, view.rest_positions);
+        d.has_surface = view.mesh && view.mesh->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
+                        look.body != BodyStyle::Wireframe;
+        if (d.has_surface) d.surface.update(*view.mesh, d.particles, frame.debug.flip_normals);
+    }
+    timings.surface_ms = ms_since(start);
+    const auto upload_start = Clock::now();
+    for (std::size_t b = 0; b < soft.size(); ++b) {
+        SoftDraw& d = soft[b];
+        if (!d.has_surface) continue;
+        d.gpu.upload_topology(*frame.soft_bodies[b].mesh);
+        const auto& vertices = d.surface.vertices();
+        gl::stream(GL_ARRAY_BUFFER, d.gpu.vbo.id(), vertices.data(), static_cast<GLsizeiptr>(vertices.size() * sizeof(SurfaceVertex)));
+    }
+    timings.upload_ms = ms_since(upload_start);
+}
+
+// Each rigid body's fixed mesh (uploaded once), model matrix and world bounding box.
+void Renderer::State::prepare_rigid(const Frame& frame) {
+    rigid.resize(frame.rigid_bodies.size());
+    for (std::size_t b = 0; b < rigid.size(); ++b) {
+        const RigidBodyView& view = frame.rigid_bodies[b];
+        RigidDraw& d = rigid[b];
+        d.model = model_matrix(view);
+        d.model[3] += glm::vec4(frame.debug.body_offset, 0.0f);
+        d.normal_matrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+        d.low = d.high = glm::vec3(d.model[3]);
+        if (!view.mesh || view.mesh->triangle_count() == 0) continue;
+        if (d.gpu.upload_topology(*view.mesh)) {
+            std::vector<glm::vec3> points(view.mesh->positions.size());
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                const Vec3& p = view.mesh->positions[i];
+                points[i] = {p.x, p.y, p.z};
+            }
+            d.surface.update(*view.mesh, points);
+            const auto& vertices = d.surface.vertices();
+            glBindBuffer(GL_ARRAY_BUFFER, d.gpu.vbo.id());
+            glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(SurfaceVertex)), vertices.data(),
+                         GL_STATIC_DRAW);
+            glBindBuffer(GL_ARRAY_BUFFER, 0);
+        }
+        bool first = true;
+        for (const SurfaceVertex& v : d.surface.vertices()) {
+            const glm::vec3 p(d.model * glm::vec4(v.position, 1.0f));
+            d.low = first ? p : glm::min(d.low, p);
+            d.high = first ? p : glm::max(d.high, p);
+            first = false;
+        }
+    }
 }
 
 void Renderer::State::set_lighting(const ShaderProgram& program, const glm::vec3& eye, const glm::mat4& shadow_matrix,
@@ -329,6 +420,75 @@ void Renderer::State::draw_spheres(const std::vector<SphereInstance>& spheres, c
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(spheres.size()));
 }
 
+namespace {
+
+constexpr int kMaxOccluders = 16;  // as in ground.frag.glsl
+
+// The bodies of a frame as one shape: for fitting the sun's shadow map, sizing the grid, the
+// haze and the markers, and darkening the floor under each body.
+struct SceneShape {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;      // of a sphere about `centre` holding every body
+    float body_size = 1e-3f;  // the largest moving body's radius (at rest, for a soft body)
+    std::vector<glm::vec3> occluder_centres, occluder_axes;
+    bool any = false;
+};
+
+SceneShape measure_scene(const Frame& frame, const std::vector<SoftDraw>& soft, const std::vector<RigidDraw>& rigid) {
+    SceneShape scene;
+    struct Box {
+        glm::vec3 low, high;
+        float size;  // the body's radius, for its occluder's smallest axis
+    };
+    std::vector<Box> boxes;
+    for (const SoftDraw& d : soft) {
+        if (d.particles.empty()) continue;
+        boxes.push_back({d.shape.low, d.shape.high, std::max(d.shape.rest_radius, 1e-3f)});
+        scene.body_size = std::max(scene.body_size, d.shape.rest_radius);
+    }
+    float largest_fixed = 0.0f;
+    bool moving = !boxes.empty();
+    for (std::size_t b = 0; b < rigid.size(); ++b) {
+        const RigidBodyView& view = frame.rigid_bodies[b];
+        boxes.push_back({rigid[b].low, rigid[b].high, std::max(view.radius, 1e-3f)});
+        if (view.fixed) largest_fixed = std::max(largest_fixed, view.radius);
+        else {
+            scene.body_size = std::max(scene.body_size, view.radius);
+            moving = true;
+        }
+    }
+    if (!moving) scene.body_size = std::max(scene.body_size, largest_fixed);
+    scene.any = !boxes.empty();
+    if (soft.size() == 1 && rigid.empty() && !soft[0].particles.empty()) {
+        // One soft body: its own centre of mass and radius.
+        scene.centre = soft[0].shape.centre_of_mass;
+        scene.radius = soft[0].shape.radius;
+        scene.body_size = std::max(soft[0].shape.rest_radius, 1e-3f);
+    } else if (scene.any) {
+        glm::vec3 low = boxes[0].low, high = boxes[0].high;
+        for (const Box& box : boxes) {
+            low = glm::min(low, box.low);
+            high = glm::max(high, box.high);
+        }
+        scene.centre = 0.5f * (low + high);
+        for (const Box& box : boxes) {
+            scene.radius = std::max(scene.radius, glm::length(0.5f * (box.low + box.high) - scene.centre) +
+                                                      0.5f * glm::length(box.high - box.low));
+        }
+        scene.body_size = std::max(scene.body_size, 1e-3f);
+    }
+    // The occluders: the largest bodies' boxes, as ellipsoids a little larger than the box.
+    std::stable_sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) { return a.size > b.size; });
+    if (boxes.size() > std::size_t(kMaxOccluders)) boxes.resize(kMaxOccluders);
+    for (const Box& box : boxes) {
+        scene.occluder_centres.push_back(0.5f * (box.high + box.low));
+        scene.occluder_axes.push_back(glm::max(0.5f * (box.high - box.low), glm::vec3(0.05f * box.size)) * 1.1f);
+    }
+    return scene;
+}
+
+}  // namespace
+
 void Renderer::draw(const Frame& frame, int width, int height, unsigned target_framebuffer) {
     if (width <= 0 || height <= 0) return;
     State& s = *state_;
@@ -338,41 +498,42 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     const float aspect = float(width) / float(height);
     const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
     const glm::vec3 eye = camera.eye();
+    const glm::mat4 identity(1.0f);
+    const glm::mat3 identity3(1.0f);
 
-    // --- The body this frame: positions, normals, shape -------------------------------------
-    const Mesh* mesh = frame.body.mesh;
-    interpolate_positions(frame.body, frame.debug.body_offset, s.particles);
-    const BodyShape shape = measure_body(s.particles, frame.body.rest_positions);
-    const bool has_surface = mesh && mesh->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
-                             look.body != BodyStyle::Wireframe;
-    if (has_surface) s.surface.update(*mesh, s.particles, frame.debug.flip_normals);
-    s.timings.surface_ms = ms_since(start);
+    // --- The bodies this frame: soft ones' positions, normals, shape; rigid ones' placement ---
+    s.prepare_soft(frame);
+    s.prepare_rigid(frame);
+    const SceneShape scene = measure_scene(frame, s.soft, s.rigid);
 
-    const auto upload_start = Clock::now();
-    if (has_surface) {
-        s.upload_topology(*mesh);
-        const auto& vertices = s.surface.vertices();
-        gl::stream(GL_ARRAY_BUFFER, s.body_vbo.id(), vertices.data(),
-                   static_cast<GLsizeiptr>(vertices.size() * sizeof(SurfaceVertex)));
+    std::vector<SoftBodyDrawn> soft_drawn;
+    for (const SoftDraw& d : s.soft) {
+        soft_drawn.push_back({d.particles, d.has_surface ? std::span<const SurfaceVertex>(d.surface.vertices())
+                                                         : std::span<const SurfaceVertex>(),
+                              d.shape});
     }
-    s.timings.upload_ms = ms_since(upload_start);
-    const GLsizei index_count = has_surface ? static_cast<GLsizei>(mesh->triangles.size()) : 0;
-    s.overlay_builder.build(frame, s.particles,
-                            has_surface ? std::span<const SurfaceVertex>(s.surface.vertices()) : std::span<const SurfaceVertex>(),
-                            shape, s.overlays);
+    s.overlay_builder.build(frame, soft_drawn, scene.body_size, s.overlays);
     float largest_sphere = 0.0f;
     for (const SphereInstance& sphere : s.overlays.spheres) largest_sphere = std::max(largest_sphere, sphere.radius);
+    bool any_surface = false;
+    for (const SoftDraw& d : s.soft) any_surface |= d.has_surface;
+    for (const RigidDraw& d : s.rigid) any_surface |= d.gpu.index_count() > 0;
 
-    // --- Shadow map, fitted to the body ------------------------------------------------------
-    const bool shadows = look.shadows && (has_surface || !s.overlays.spheres.empty());
+    const auto draw_mesh = [&](const MeshGpu& gpu) {
+        glBindVertexArray(gpu.vao.id());
+        glDrawElements(GL_TRIANGLES, gpu.index_count(), GL_UNSIGNED_INT, nullptr);
+    };
+
+    // --- Shadow map, fitted to the bodies ----------------------------------------------------
+    const bool shadows = look.shadows && (any_surface || !s.overlays.spheres.empty());
     glm::mat4 shadow_matrix(1.0f);
     float penumbra_scale = 0.0f, normal_offset = 0.0f;
     if (shadows) {
-        const float r = std::max(shape.radius, 1e-3f) * 1.05f + largest_sphere;
-        const glm::vec3 c = shape.centre_of_mass;
+        const float r = std::max(scene.radius, 1e-3f) * 1.05f + largest_sphere;
+        const glm::vec3 c = scene.centre;
         const glm::vec3 up = std::abs(kSunDirection.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
         const glm::mat4 light_view = glm::lookAt(c + kSunDirection * (r + 1.0f), c, up);
-        // Deep enough to reach the floor below the body along the sun's rays.
+        // Deep enough to reach the floor below the bodies along the sun's rays.
         const float to_floor = look.ground ? std::max(0.0f, (c.z - look.ground_height) / kSunDirection.z) : 0.0f;
         const float near_plane = 0.5f, far_plane = r + 1.0f + to_floor + r + 1.0f;
         const glm::mat4 light_projection = glm::ortho(-r, r, -r, r, near_plane, far_plane);
@@ -390,11 +551,18 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         glDisable(GL_BLEND);
         glClearColor(1.0f, 1.0f, 0.0f, 0.0f);  // the far plane: nothing in the way
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        if (has_surface) {
+        if (any_surface) {
             s.shadow.use();
             set(s.shadow.uniform("u_shadow_view_projection"), light);
-            glBindVertexArray(s.body_vao.id());
-            glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+            set(s.shadow.uniform("u_model"), identity);
+            for (const SoftDraw& d : s.soft) {
+                if (d.has_surface) draw_mesh(d.gpu);
+            }
+            for (const RigidDraw& d : s.rigid) {
+                if (d.gpu.index_count() == 0) continue;
+                set(s.shadow.uniform("u_model"), d.model);
+                draw_mesh(d.gpu);
+            }
         }
         if (!s.overlays.spheres.empty()) {
             s.sphere_shadow.use();
@@ -424,7 +592,7 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
 
-    const float body_size = std::max(shape.rest_radius, 1e-3f);
+    const float body_size = scene.body_size;
     if (look.ground) {
         s.ground.use();
         set(s.ground.uniform("u_view_projection"), view_projection);
@@ -434,10 +602,13 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         set(s.ground.uniform("u_floor_color"), kFloorColor);
         set(s.ground.uniform("u_grid_major"), grid_spacing(body_size));
         set(s.ground.uniform("u_fog_distance"), 3.0f * camera.distance + 12.0f * body_size);
-        const glm::vec3 axes = glm::max(0.5f * (shape.high - shape.low), glm::vec3(0.05f * body_size));
-        set(s.ground.uniform("u_occluder_centre"), 0.5f * (shape.high + shape.low));
-        set(s.ground.uniform("u_occluder_axes"), axes * 1.1f);
-        set(s.ground.uniform("u_occlusion"), mesh && !s.particles.empty() ? 0.75f : 0.0f);
+        const GLsizei occluders = static_cast<GLsizei>(scene.occluder_centres.size());
+        set(s.ground.uniform("u_occluder_count"), int(occluders));
+        if (occluders > 0) {
+            glUniform3fv(s.ground.uniform("u_occluder_centre"), occluders, glm::value_ptr(scene.occluder_centres[0]));
+            glUniform3fv(s.ground.uniform("u_occluder_axes"), occluders, glm::value_ptr(scene.occluder_axes[0]));
+        }
+        set(s.ground.uniform("u_occlusion"), scene.any ? 0.75f : 0.0f);
         s.set_lighting(s.ground, eye, shadow_matrix, shadows, penumbra_scale, normal_offset);
         // Pushed back a little in depth: a body flattened onto the floor stays in front of it.
         glEnable(GL_POLYGON_OFFSET_FILL);
@@ -447,25 +618,47 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         glDisable(GL_POLYGON_OFFSET_FILL);
     }
 
-    const auto draw_body = [&](float opacity) {
+    // One body's surface: soft bodies with the identity model matrix, rigid ones with theirs.
+    const auto draw_body = [&](const MeshGpu& gpu, const glm::mat4& model, const glm::mat3& normal_matrix,
+                               const glm::vec3& color, float size, float opacity, bool two_sided) {
         s.body.use();
         set(s.body.uniform("u_view_projection"), view_projection);
-        set(s.body.uniform("u_body_color"), look.body_color);
+        set(s.body.uniform("u_model"), model);
+        set(s.body.uniform("u_normal_matrix"), normal_matrix);
+        set(s.body.uniform("u_body_color"), color);
         set(s.body.uniform("u_pattern"), look.pattern ? 1.0f : 0.0f);
         set(s.body.uniform("u_opacity"), opacity);
-        set(s.body.uniform("u_two_sided"), look.body == BodyStyle::Ghost ? 1.0f : 0.0f);
+        set(s.body.uniform("u_two_sided"), two_sided ? 1.0f : 0.0f);
         set(s.body.uniform("u_ground_height"), look.ground ? look.ground_height : -1e30f);
-        set(s.body.uniform("u_contact_range"), 0.6f * body_size);
+        set(s.body.uniform("u_contact_range"), 0.6f * size);
         s.set_lighting(s.body, eye, shadow_matrix, shadows, penumbra_scale, normal_offset);
-        glBindVertexArray(s.body_vao.id());
-        glDrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+        draw_mesh(gpu);
+    };
+    const auto draw_soft = [&](float opacity, bool two_sided) {
+        for (const SoftDraw& d : s.soft) {
+            if (d.has_surface) draw_body(d.gpu, identity, identity3, look.body_color, std::max(d.shape.rest_radius, 1e-3f), opacity, two_sided);
+        }
     };
     // A closed body hides its back faces (they would fight with the front ones when it is
     // crushed flat); an open one shows both sides.
-    if (has_surface && look.body == BodyStyle::Solid) {
-        if (s.closed_mesh) glEnable(GL_CULL_FACE);
+    if (look.body == BodyStyle::Solid) {
+        for (const SoftDraw& d : s.soft) {
+            if (!d.has_surface) continue;
+            if (d.gpu.closed) glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            draw_body(d.gpu, identity, identity3, look.body_color, std::max(d.shape.rest_radius, 1e-3f), 1.0f, false);
+            glDisable(GL_CULL_FACE);
+        }
+    }
+    // Rigid bodies are always solid; fixed ones (scenery) in a quieter tone of their colour.
+    for (std::size_t b = 0; b < s.rigid.size(); ++b) {
+        const RigidDraw& d = s.rigid[b];
+        if (d.gpu.index_count() == 0) continue;
+        const RigidBodyView& view = frame.rigid_bodies[b];
+        const glm::vec3 color = view.fixed ? glm::mix(view.color, glm::vec3(0.62f, 0.62f, 0.6f), 0.6f) : view.color;
+        if (d.gpu.closed) glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        draw_body(1.0f);
+        draw_body(d.gpu, d.model, d.normal_matrix, color, std::max(view.radius, 1e-3f), 1.0f, false);
         glDisable(GL_CULL_FACE);
     }
 
@@ -481,24 +674,24 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
 
-    // Overlays inside or on the body, depth tested.
+    // Overlays inside or on the bodies, depth tested.
     // A see-through body wraps them: its far side first, the lines, then its near side.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     s.draw_spheres(s.overlays.spheres, camera, aspect, shadow_matrix);
     glDepthMask(GL_FALSE);
-    const bool ghost = has_surface && look.body == BodyStyle::Ghost;
+    const bool ghost = look.body == BodyStyle::Ghost;
     if (ghost) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT);
-        draw_body(kGhostOpacity * 0.6f);
+        draw_soft(kGhostOpacity * 0.6f, true);
         glDisable(GL_CULL_FACE);
     }
     s.draw_lines(s.overlays.lines, view_projection, width, height, eye);
     if (ghost) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        draw_body(kGhostOpacity);
+        draw_soft(kGhostOpacity, true);
         glDisable(GL_CULL_FACE);
     }
 
@@ -530,6 +723,26 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glUseProgram(0);
     s.timings.total_ms = ms_since(start);
+}
+
+glm::mat4 model_matrix(const RigidBodyView& body) {
+    const float a = body.alpha;
+    const glm::vec3 x = glm::mix(body.previous_position, body.position, a);
+    // Along the shorter arc between the two ticks' orientations, normalised, then given back
+    // the length the physics' quaternion has (1, unless it was left to drift).
+    glm::vec4 q0 = body.previous_orientation, q1 = body.orientation;
+    if (glm::dot(q0, q1) < 0.0f) q1 = -q1;
+    glm::vec4 q = glm::mix(q0, q1, a);
+    const float len = glm::length(q);
+    if (len > 0.0f) q *= glm::mix(glm::length(q0), glm::length(q1), a) / len;
+    // The physics' formula (Quat::to_matrix): it takes |q| = 1 for granted.
+    const float w = q.x, i = q.y, j = q.z, k = q.w;
+    glm::mat4 m(1.0f);
+    m[0] = glm::vec4(1.0f - 2.0f * (j * j + k * k), 2.0f * (i * j + w * k), 2.0f * (i * k - w * j), 0.0f);
+    m[1] = glm::vec4(2.0f * (i * j - w * k), 1.0f - 2.0f * (i * i + k * k), 2.0f * (j * k + w * i), 0.0f);
+    m[2] = glm::vec4(2.0f * (i * k + w * j), 2.0f * (j * k - w * i), 1.0f - 2.0f * (i * i + j * j), 0.0f);
+    m[3] = glm::vec4(x, 1.0f);
+    return m;
 }
 
 Image Renderer::read_back() const {

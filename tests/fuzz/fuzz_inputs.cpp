@@ -162,21 +162,21 @@ void check_mesh(const RawMesh& raw, const Mesh& mesh) {
     }
 }
 
-// Saves the parameters as a scene file's text and reads it back.
-void expect_scene_round_trip(const Params& params) {
+// Saves the scene as a scene file's text and reads it back.
+void expect_scene_round_trip(const Scene& scene) {
     std::string saved;
     try {
-        saved = scene_to_json(params);
+        saved = scene_to_json(scene);
     } catch (const InputError&) {
         return;  // a mesh path that is not UTF-8: refused by name, nothing written
     }
-    Params back;
+    Scene back;
     try {
         back = parse_scene(saved, "fuzz.json");
     } catch (const InputError& e) {
         throw InvariantBroken(std::string("a saved scene loads back: ") + e.what());
     }
-    expect(back == params, "a saved scene loads back the same parameters");
+    expect(back == scene, "a saved scene loads back the same scene");
 }
 
 }  // namespace
@@ -201,18 +201,19 @@ void mesh_input(std::string_view data) {
 }
 
 void scene_input(std::string_view data) {
-    Params params;
+    Scene scene;
     try {
-        params = parse_scene(std::string(data), "fuzz.json");
+        scene = parse_scene(std::string(data), "fuzz.json");
     } catch (const InputError&) {
         return;
     }
     try {
-        validate(params);
+        validate(scene.params);
+        for (const SoftBodyScene& body : scene.soft_bodies) validate(body.params);
     } catch (const InputError& e) {
         throw InvariantBroken(std::string("a scene that loads is valid: ") + e.what());
     }
-    expect_scene_round_trip(params);
+    expect_scene_round_trip(scene);
 }
 
 void set_input(std::string_view data) {

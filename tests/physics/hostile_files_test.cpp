@@ -141,7 +141,7 @@ TEST(HostileFiles, EnormousJsonIsRefusedOrRead) {
     for (int i = 1; i < 150'000; ++i) pins += "," + std::to_string(i % 8);
     pins += "]}";
     ASSERT_LT(pins.size(), std::size_t(1) << 20);
-    EXPECT_EQ(load_scene(dir.write("pins.json", pins)).pinned.size(), 150'000u);
+    EXPECT_EQ(load_scene(dir.write("pins.json", pins)).params.pinned.size(), 150'000u);
 
     // A key of most of a megabyte: named, cut short, on one line, and no slower than a
     // short one to look up ("did you mean" compares it with every key).
@@ -328,7 +328,7 @@ TEST(HostileFiles, NonUtf8Names) {
     const std::string folder = dir.file(odd);
     fs::create_directory(folder);
     const std::string scene = dir.write(odd + "/scene.json", "{\"mesh\": \"../" + std::string("a.obj") + "\"}");
-    EXPECT_EQ(load_scene(scene).mesh, dir.file("a.obj"));
+    EXPECT_EQ(load_scene(scene).params.mesh, dir.file("a.obj"));
     // Inside JSON, bytes that are not UTF-8 are malformed JSON, said so with the line.
     EXPECT_REFUSED_NAMING(parse_scene("{\n\"mesh\": \"" + odd + ".obj\"}", "bad.json"), "bad.json:2:", "malformed JSON");
     // A scene file cannot hold such a mesh path: saving says so and writes nothing.
@@ -340,7 +340,7 @@ TEST(HostileFiles, NonUtf8Names) {
     // But a scene file may itself have such a name.
     params.mesh = dir.file("a.obj");
     save_scene(dir.file(odd + ".json"), params, Overwrite::No);
-    EXPECT_EQ(load_scene(dir.file(odd + ".json")).mesh, dir.file("a.obj"));
+    EXPECT_EQ(load_scene(dir.file(odd + ".json")).params.mesh, dir.file("a.obj"));
     // OBJ names and comments in any encoding are skipped.
     EXPECT_EQ(load_mesh(dir.write("names.obj", "# " + odd + "\no " + odd + "\ng " + odd + "\nusemtl " + odd +
                                                     "\nv 0 0 0\n"))

@@ -159,7 +159,11 @@ TEST(Momentum, ConservedWithoutExternalForces) {
     const std::uint32_t grabbed[3] = {3, 17, 29};
     const Vec3 targets[3] = {{3.0f, 0.0f, 1.0f}, {-2.0f, 2.0f, 0.0f}, {0.0f, -1.0f, -3.0f}};
     for (int g = 0; g < 3; ++g) {
-        world.set_grab(Grab{grabbed[g], targets[g], 10.0f});
+        Grab grab;
+        grab.particle = grabbed[g];
+        grab.target = targets[g];
+        grab.stiffness = 10.0f;
+        world.set_grab(grab);
         world.run(5);
     }
     world.set_grab(std::nullopt);

@@ -158,7 +158,8 @@ TEST(Scene, KeysOverrideTheBaseAndMeshIsRelativeToTheFile) {
     Params base;
     base.stiffness = 42.0f;
     const Params p = parse_scene("{\"dt\": 0.01, \"mesh\": \"../meshes/a.obj\", \"gravity\": [0, 0, -1]}",
-                                 "/scenes/here/s.json", base);
+                                 "/scenes/here/s.json", base)
+                         .params;
     EXPECT_EQ(p.dt, 0.01f);
     EXPECT_EQ(p.stiffness, 42.0f);  // not in the file: the base's
     EXPECT_EQ(p.gravity, (Vec3{0.0f, 0.0f, -1.0f}));
@@ -197,7 +198,7 @@ TEST(Scene, SaveNeverOverwritesUnlessAsked) {
     EXPECT_REFUSED_NAMING(save_scene(path, p, Overwrite::No), "scene.json", "already exists");
     EXPECT_EQ(read_text(path), "old contents\n");
     save_scene(path, p, Overwrite::Yes);
-    EXPECT_EQ(load_scene(path).stiffness, 20.0f);
+    EXPECT_EQ(load_scene(path).params.stiffness, 20.0f);
     // No temporary files left beside it.
     int files = 0;
     for (const auto& entry : fs::directory_iterator(dir.path())) {
@@ -223,7 +224,7 @@ TEST(Scene, SaveReplacesAtomically) {
     p.stiffness = 20.0f;
     save_scene(path, p, Overwrite::Yes);
     EXPECT_EQ(read_text(dir.file("old-link.json")), "{\"stiffness\": 1}\n");
-    EXPECT_EQ(load_scene(path).stiffness, 20.0f);
+    EXPECT_EQ(load_scene(path).params.stiffness, 20.0f);
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ Params falling_cube() {
 
 render::Frame frame_of(const World& world, float alpha = 1.0f) {
     render::Frame frame;
-    frame.body = app::body_view(world, alpha);
+    app::world_view(world, alpha, frame);
     frame.camera.frame({0.0f, 0.0f, 0.8f}, 1.2f, float(kW) / float(kH));
     return frame;
 }

@@ -46,11 +46,17 @@ struct Params {
     float static_friction = 0.6f;              // mu_s (Eq. 24)
     float dynamic_friction = 0.4f;             // mu_d (Eq. 25)
     std::vector<std::uint32_t> pinned;         // vertex indices (0-based, as in the file)
+    int renormalize_every = 5;                 // ticks between renormalising quaternions (Listing 9); 0: never
 
     bool operator==(const Params&) const = default;
 };
 
 enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList };
+
+// Whose key it is: the world's (dt, gravity, the ground, ...), or a soft body's (its mesh,
+// mass, springs, ...). A scene file's flat keys hold both: the world's and those of the soft
+// body named "body"; each entry of "soft_bodies" holds body keys only.
+enum class ParamScope { World, Body };
 
 // Describes one key: for validation, documentation and the UI.
 struct ParamInfo {
@@ -63,6 +69,7 @@ struct ParamInfo {
     double max = 0.0;
     bool min_exclusive = false;
     bool live = true;           // false: takes effect on reset (it changes the particles)
+    ParamScope scope = ParamScope::World;
 };
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(std::string_view key);

@@ -48,13 +48,14 @@ struct Quat {
     constexpr Vec3d vector() const { return {x, y, z}; }
     bool is_finite() const { return std::isfinite(w) && std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 
-    // The rotation matrix R of a unit quaternion (body to world). For a quaternion that has
-    // drifted from unit length (renormalize_every = 0), R is that of q / |q|.
-    Mat3 to_matrix() const {
-        const double s = 2.0 / norm_squared();
-        const double xx = x * x * s, yy = y * y * s, zz = z * z * s;
-        const double xy = x * y * s, xz = x * z * s, yz = y * z * s;
-        const double wx = w * x * s, wy = w * y * s, wz = w * z * s;
+    // The rotation matrix R (body to world) of a unit quaternion, by the usual formula, which
+    // takes |q| = 1 for granted (Listing 9's ConvertToRotationMatrix). A quaternion that has
+    // drifted from unit length gives a matrix that is no longer a rotation: it scales and
+    // shears the body. That is why Listing 9 renormalises q every few steps.
+    constexpr Mat3 to_matrix() const {
+        const double xx = 2.0 * x * x, yy = 2.0 * y * y, zz = 2.0 * z * z;
+        const double xy = 2.0 * x * y, xz = 2.0 * x * z, yz = 2.0 * y * z;
+        const double wx = 2.0 * w * x, wy = 2.0 * w * y, wz = 2.0 * w * z;
         Mat3 r;
         r.m[0][0] = 1.0 - (yy + zz);
         r.m[0][1] = xy - wz;
@@ -68,7 +69,7 @@ struct Quat {
         return r;
     }
     // R v for a unit quaternion.
-    Vec3d rotate(const Vec3d& v) const { return to_matrix() * v; }
+    constexpr Vec3d rotate(const Vec3d& v) const { return to_matrix() * v; }
 };
 
 constexpr Quat operator*(double s, const Quat& q) { return q * s; }

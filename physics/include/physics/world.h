@@ -1,11 +1,12 @@
 // The world: its settings (dt, gravity, integrator, substeps, ground, air, friction,
-// restitution), its soft bodies (Listing 8), and one fixed tick that advances them all.
+// restitution), its soft bodies (Listing 8), its rigid bodies (Listings 9-11), the springs
+// between bodies, and one fixed tick that advances them all.
 //
 // tick() is the step in order and nothing else (world.cpp): forces, integration, contacts,
 // checks. Each of those lives in a file of its own, named for its concept.
 //
 // Soft bodies do not collide with one another (as in Jolt): each feels its own springs and
-// dampers, gravity, drag and the ground.
+// dampers, gravity, drag, the ground and the springs attached to it.
 #pragma once
 
 #include <cstdint>
@@ -15,8 +16,11 @@
 #include <vector>
 
 #include "physics/arrays.h"
+#include "physics/contact.h"
+#include "physics/link.h"
 #include "physics/mesh.h"
 #include "physics/params.h"
+#include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 #include "physics/thread_pool.h"
 
@@ -25,9 +29,10 @@ namespace softbody {
 enum class Status { Ok, Diverged };
 
 struct Energy {
-    double kinetic = 0.0;      // sum 1/2 m |v|^2
+    double kinetic = 0.0;      // sum 1/2 m |v|^2, plus each rigid body's 1/2 |P|^2 / m + 1/2 L . w
+    double rotational = 0.0;   // the rigid bodies' part of that: sum 1/2 L . w
     double gravity = 0.0;      // sum -m (g . x)
-    double elastic = 0.0;      // sum over springs 1/2 k (l - l0)^2
+    double elastic = 0.0;      // sum over springs 1/2 k (l - l0)^2, every pair's and every link's
     double total() const { return kinetic + gravity + elastic; }
 };
 
@@ -44,12 +49,15 @@ struct Stability {
     int substeps_needed = 1;    // fewest that keep every mode stable (0: none up to 1000)
 };
 
-// A spring from one particle to a point in space: the mouse grab of the interactive demo.
+// A damped spring from a particle, or a point of a rigid body, to a point in space: the mouse
+// grab of the interactive demo.
 struct Grab {
     std::uint32_t particle = 0;
     Vec3 target;
     float stiffness = 0.0f;     // N/m; 0 picks one that moves the body briskly
-    std::uint32_t body = 0;     // which soft body
+    std::uint32_t body = 0;     // which soft body, or which rigid body when `rigid`
+    bool rigid = false;
+    Vec3d point;                // on a rigid body: the grabbed point, body axes from the centre of mass
 };
 
 struct WorldOptions {
@@ -57,7 +65,8 @@ struct WorldOptions {
     bool reference_kernel = false;  // use the readable one-pair-at-a-time loop
 };
 
-// What a world is built from: its settings, and each soft body with its own keys and mesh.
+// What a world is built from: its settings, each soft body with its own keys and mesh, the
+// rigid bodies (made by make_rigid_body), and the springs between bodies, by name.
 struct SoftBodyDef {
     std::string name = "body";
     Params params;  // the body's keys (ParamScope::Body); world keys are taken from WorldDef
@@ -66,11 +75,14 @@ struct SoftBodyDef {
 struct WorldDef {
     Params params;  // world keys (ParamScope::World); the body keys of the first soft body too
     std::vector<SoftBodyDef> soft_bodies;
+    std::vector<RigidBody> rigid_bodies;
+    std::vector<SpringDef> springs;
 };
 
 class World {
 public:
-    // Throws InputError for invalid params or pins that name no vertex.
+    // Throws InputError for invalid params, pins that name no vertex, or a spring whose end
+    // names no body, a vertex that does not exist, or a point where a vertex is needed.
     explicit World(WorldDef def, WorldOptions options = {});
     // One soft body, named "body", with the keys of `params`.
     World(const Params& params, Mesh mesh, WorldOptions options = {});
@@ -110,7 +122,32 @@ public:
     std::uint64_t ticks() const { return ticks_; }
     double time() const { return static_cast<double>(ticks_) * static_cast<double>(params_.dt); }
 
-    // --- Bodies ---------------------------------------------------------------------------------
+    // --- Rigid bodies: Listing 10's thirteen numbers each (rigid::P, X, L, Q) -------------------
+    std::size_t rigid_body_count() const { return rigid_.size(); }
+    const RigidBody& rigid_body(std::size_t i) const { return rigid_[i]; }
+    const double* rigid_state(std::size_t i) const { return &y_[i * rigid::kStateSize]; }
+    // The state at the start of the last tick: the renderer draws between it and the current one.
+    const double* rigid_previous_state(std::size_t i) const { return &y_tick_prev_[i * rigid::kStateSize]; }
+    RigidMotion rigid_motion(std::size_t i) const { return softbody::rigid_motion(rigid_[i], rigid_state(i)); }
+    // A rigid body's restitution and friction (empty: the world's), from the next contact on.
+    void set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction) {
+        rigid_[i].restitution = restitution;
+        rigid_[i].friction = friction;
+    }
+    // Contacts of the last step (rigid bodies with the ground and with one another).
+    const std::vector<RigidContact>& contacts() const { return contacts_; }
+    const std::vector<Link>& links() const { return links_; }
+    // Where each end of a link is now (world, m).
+    Vec3d link_end_position(const LinkEnd& end) const;
+    // What was decided for the user while building (a normalised quaternion, a hull's mass).
+    const std::vector<std::string>& notes() const { return notes_; }
+
+    // Totals over every body, particles included: linear momentum, and angular momentum about
+    // the origin (each rigid body's x x P + L, each particle's x x m v).
+    Vec3d momentum() const;
+    Vec3d angular_momentum() const;
+
+    // --- Soft bodies ----------------------------------------------------------------------------
     std::size_t soft_body_count() const { return soft_.size(); }
     const SoftBody& soft_body(std::size_t i) const { return soft_[i]; }
     // The first soft body (the scene's flat keys): what the accessors below describe.
@@ -132,19 +169,33 @@ public:
     float min_z() const;          // of the first soft body
     Stability stability() const;  // the least stable soft body's
     int substeps_in_use() const { return substeps_; }
-    std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v
+    std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v, and every rigid state
 
 private:
     void build();
+    void resolve_links(const std::vector<SpringDef>& springs);
     void update_substeps();
     void step(float h);
     void evaluate_forces(int stage, bool record_contacts);
+    void evaluate_links(int stage);
+    void solve_rigid_contacts(float h);
+    void advance_rigid_positions(double h);
     void check_divergence();
     void take_energy_baseline();
     double kinetic_plus_gravity() const;
 
     Params params_;
     std::vector<SoftBody> soft_;
+    std::vector<RigidBody> rigid_;
+    std::vector<Link> links_;
+    std::vector<std::string> notes_;
+
+    // The rigid bodies' flat state (Listing 10), the same at the start of the tick, the last
+    // good one, and the integrators' stages and derivatives.
+    std::vector<double> y_, y_tick_prev_, y_good_, y_stage_, y_step_start_, k_[4];
+    std::vector<Vec3d> link_force_on_rigid_, link_torque_on_rigid_;
+    std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
+    std::vector<RigidContact> contacts_, previous_contacts_;
     std::unique_ptr<ThreadPool> pool_;
     bool reference_kernel_;
 

@@ -1,0 +1,31 @@
+// A contact between a rigid body and the ground (or, as the collision issue adds them, another
+// body): where, along which normal, how deep, and what the solver did there. The World keeps
+// the contacts of its last step for display and teaching (the app's contact overlay).
+#pragma once
+
+#include <cstdint>
+
+#include "physics/vec3.h"
+
+namespace softbody {
+
+struct RigidContact {
+    std::uint32_t a = 0;         // the rigid body the normal points toward
+    std::int32_t b = -1;         // the other rigid body, or -1 for the ground (static: 1/m = 0, J^-1 = 0)
+    std::uint32_t feature = 0;   // which vertex or edge made it, to carry its impulses to the next step
+    Vec3d point;                 // world, m
+    Vec3d normal;                // unit, out of b toward a
+    double depth = 0.0;          // penetration along the normal where the step took the bodies, m (> 0: overlapping)
+    double separation = 0.0;     // the same points' gap along the normal at the step's start, m (< 0: overlapping)
+    Vec3d local_a, local_b;      // the point in each body's axes, from its centre of mass
+    double restitution = 0.0;    // e
+    double friction = 0.0;       // mu
+
+    // What the solver found (Eq. 37, 38): v_rel . n before, the accumulated impulses.
+    double approach_speed = 0.0; // -v_rel . n before the impulses (> 0: closing), m/s
+    double normal_impulse = 0.0; // lambda, N s
+    double tangent_impulse[2] = {0.0, 0.0};
+    double bounce_shift = 0.0;   // m: how far a bounce from a gap moves the bodies back (see contact_solver.h)
+};
+
+}  // namespace softbody

@@ -1,0 +1,131 @@
+// Rigid bodies: the addendum's second half (Eq. 26-36, Listings 9-11).
+//
+// A rigid body's state is Listing 10's thirteen numbers: linear momentum P, centre-of-mass
+// position x, angular momentum L and orientation quaternion q. The World keeps every body's
+// thirteen in one flat array, and one implementation of each integrator advances them all
+// (Listing 11's point; integrators.cpp). They are held in double rather than Listing 10's
+// float: resting contact and the closed-form tests (a flip period, a precession rate) want
+// the digits, and a few hundred bodies cost nothing either way.
+//
+// What is fixed about a body (its shape, mass and inertia tensor in its own axes, about its
+// centre of mass) lives here; what changes lives in the flat array.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "physics/convex_hull.h"
+#include "physics/mat3.h"
+#include "physics/mesh.h"
+#include "physics/quat.h"
+#include "physics/vec3.h"
+
+namespace softbody {
+
+enum class ShapeKind { Box, Sphere, Cylinder, Mesh };
+std::string_view to_string(ShapeKind kind);
+
+// Listing 10's layout of one body's thirteen numbers in the flat state array.
+namespace rigid {
+inline constexpr int kStateSize = 13;
+inline constexpr int P = 0;   // linear momentum, kg m/s
+inline constexpr int X = 3;   // centre-of-mass position, m
+inline constexpr int L = 6;   // angular momentum about the centre of mass, kg m^2/s
+inline constexpr int Q = 9;   // orientation quaternion w, x, y, z (body to world)
+}  // namespace rigid
+
+// A rigid body as a scene file describes it (see README.md, "Rigid bodies"). Keys a file leaves
+// out keep these values; the optional ones left out are empty (and the shape's dimensions
+// must then be given: a box without a size is refused).
+struct RigidBodyDef {
+    std::string name;
+    ShapeKind shape = ShapeKind::Box;
+    std::optional<Vec3d> size;         // box: full side lengths, m
+    std::optional<double> radius;      // sphere, cylinder: m
+    std::optional<double> height;      // cylinder, along the body's z: m
+    std::string mesh;                  // mesh: an OBJ or OFF file
+    double scale = 1.0;                // mesh: file units to metres
+    std::optional<double> mass;        // kg; or
+    std::optional<double> density;     // kg/m^3 (default 1000, water)
+    std::optional<Vec3d> position;     // where the centre of mass goes, m (default: the file's, or the origin)
+    Quat orientation;                  // quaternion w, x, y, z (or `rotation`, degrees about x, y, z);
+                                       // normalised when the body is made
+    Vec3d velocity;                    // m/s, world axes
+    Vec3d angular_velocity;            // rad/s, world axes
+    bool fixed = false;                // infinite mass: scenery
+    std::optional<float> restitution;  // e at contacts (default: the world's `restitution`)
+    std::optional<float> friction;     // mu at contacts (default: the world's `dynamic_friction`)
+    float drag_coefficient = 0.0f;     // C_D of Eq. 23 (default 0: no drag)
+
+    bool operator==(const RigidBodyDef&) const = default;
+};
+
+// The keys of a rigid body, for scene files, `--set NAME.KEY=VALUE` and the app's panel.
+enum class RigidKeyType { Number, PositiveNumber, Vec3, Quat, Bool, Shape, Text };
+struct RigidKeyInfo {
+    std::string_view key;
+    RigidKeyType type;
+    std::string_view unit;
+    std::string_view equation;
+    std::string_view summary;
+    double min = 0.0, max = 0.0;  // valid range of numbers (each component of a vector)
+};
+std::span<const RigidKeyInfo> rigid_key_table();
+const RigidKeyInfo* find_rigid_key(std::string_view key);
+// Sets one key of `def` from command-line text ("2", "1,0,0", "box", "true"). `rotation`
+// (degrees) sets the orientation. Throws InputError naming the body and key.
+void set_rigid_key(RigidBodyDef& def, std::string_view key, std::string_view text);
+std::string rigid_key_text(const RigidBodyDef& def, std::string_view key);
+
+// What a body is made of, once its shape is known: everything the simulation needs that never
+// changes. Built by make_rigid_body().
+struct RigidBody {
+    std::string name;
+    ShapeKind shape = ShapeKind::Box;
+    Vec3d size;                 // box
+    double radius = 0.0;        // sphere, cylinder
+    double height = 0.0;        // cylinder
+    std::shared_ptr<const ConvexHull> hull;  // collision shape in body axes about the centre of
+                                             // mass (box, cylinder, mesh; none for a sphere)
+    Mesh render_mesh;           // for drawing, in body axes about the centre of mass
+    double bounding_radius = 0.0;  // from the centre of mass
+    double volume = 0.0;
+    bool hull_mass_properties = false;  // an open or non-manifold mesh: its hull's were used
+
+    double mass = 0.0;          // kg (infinite when fixed: inv_mass = 0)
+    double inv_mass = 0.0;
+    Mat3 J_body;                // inertia tensor about the centre of mass, body axes (Eq. 29-31)
+    Mat3 J_body_inv;            // its inverse (zero when fixed)
+    bool fixed = false;
+
+    std::optional<float> restitution, friction;  // empty: the world's
+    float drag_coefficient = 0.0f;
+    double drag_area = 0.0;     // S of Eq. 23: the bounding sphere's cross-section, m^2
+
+    std::array<double, rigid::kStateSize> initial{};  // the state it starts from (reset)
+    std::vector<std::string> notes;  // what was decided for the user (a normalised quaternion, a hull's mass)
+};
+
+// Builds a body from its definition: loads a mesh, computes its hull (Qhull) and its mass
+// properties (Table 1 for the primitives; Mirtich/Eberly volume integrals for a closed mesh,
+// else its hull's), and its initial state. Throws InputError naming the body and the key.
+RigidBody make_rigid_body(const RigidBodyDef& def);
+
+// The thirteen numbers' derived quantities (Eq. 32, 36), for one body.
+struct RigidMotion {
+    Vec3d P, x, L;
+    Quat q;
+    Mat3 R;          // body to world, from q (Listing 9: computed, not renormalised)
+    Mat3 J_inv;      // R J_body^-1 R^T (Eq. 32)
+    Vec3d v;         // P / m
+    Vec3d omega;     // J_world^-1 L (Eq. 36)
+};
+RigidMotion rigid_motion(const RigidBody& body, const double* state);
+
+}  // namespace softbody
