@@ -47,7 +47,8 @@ constexpr const char* kUsage =
     "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
     "              target=X:Y:Z, follow (frame the body in every image; default: frame the\n"
     "              start of the fall once, so every image shares one camera)\n"
-    "  --overlay   particles, springs, pins, com, velocity, forces, normals, or none (default: pins)\n"
+    "  --overlay   particles, springs, pins, com, velocity, forces, normals, angular (omega and L),\n"
+    "              contacts, links (springs between bodies), or none (default: pins, links)\n"
     "  --body      solid, ghost (see-through), wireframe or hidden (default: solid)\n"
     "  --no-pattern  a plain body, without the soft checks that show it turn\n"
     "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
@@ -110,6 +111,7 @@ void parse_camera(std::string_view text, CameraOptions& camera) {
 void parse_overlays(std::string_view text, render::Overlays& on) {
     on = render::Overlays{};
     on.pins = false;
+    on.links = false;
     for (std::string_view name : split(text, ',')) {
         if (name == "particles") on.particles = true;
         else if (name == "springs") on.springs = true;
@@ -118,10 +120,13 @@ void parse_overlays(std::string_view text, render::Overlays& on) {
         else if (name == "velocity" || name == "velocities") on.velocities = true;
         else if (name == "forces") on.forces = true;
         else if (name == "normals") on.normals = true;
+        else if (name == "angular") on.angular = true;
+        else if (name == "contacts") on.contacts = true;
+        else if (name == "links") on.links = true;
         else if (name == "none") {
         } else {
             throw UsageError("--overlay: unknown overlay '" + std::string(name) +
-                             "' (particles, springs, pins, com, velocity, forces, normals, none)");
+                             "' (particles, springs, pins, com, velocity, forces, normals, angular, contacts, links, none)");
         }
     }
 }
@@ -188,7 +193,9 @@ void frame_body(const World& world, const Params& params, float aspect, render::
         centre = 0.5f * (centre + landed);
         radius = 0.5f * glm::length(glm::vec3(c.x, c.y, c.z) - landed) + r;
     }
-    camera.frame(centre, std::max(radius, 1.6f * r), aspect, 0.85f);
+    // One body is framed with room to squash and roll; a group of bodies is its own margin.
+    const bool alone = world.soft_body_count() + world.rigid_body_count() == 1;
+    camera.frame(centre, std::max(radius, (alone ? 1.6f : 1.0f) * r), aspect, 0.85f);
     camera.zoom(zoom);
 }
 

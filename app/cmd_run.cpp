@@ -53,13 +53,7 @@ void save_window(const std::string& path, int width, int height) {
 void run_script_command(Demo& demo, const ScriptCommand& command) {
     const auto& args = command.args;
     if (command.verb == "set") {
-        Params params = demo.params();
-        try {
-            set_param(params, args[0], args[1]);
-            demo.edit(params);
-        } catch (const std::exception& e) {
-            demo.set_error(e.what());
-        }
+        demo.set_key(args[0], args[1]);
     } else if (command.verb == "load_scene") {
         demo.load_scene_file(args[0]);
     } else if (command.verb == "load_mesh") {

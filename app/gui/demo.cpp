@@ -135,6 +135,29 @@ void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
     }
 }
 
+void Demo::set_key(const std::string& key, const std::string& value) {
+    try {
+        const auto dot = key.find('.');
+        const std::string name = dot == std::string::npos ? "" : key.substr(0, dot);
+        for (std::size_t b = 0; b < scene_.rigid_bodies.size(); ++b) {
+            if (scene_.rigid_bodies[b].name != name) continue;
+            RigidBodyDef def = scene_.rigid_bodies[b];
+            set_rigid_key(def, key.substr(dot + 1), value);
+            edit_rigid_body(b, def);
+            return;
+        }
+        // A world key or the flat soft body's (as "stiffness" or "body.stiffness").
+        Scene scene = this->scene();
+        set_scene_key(scene, key, value);
+        if (!(scene.soft_bodies == scene_.soft_bodies)) {
+            throw InputError("'" + key + "': the soft bodies of \"soft_bodies\" take their keys from the scene file");
+        }
+        edit(scene.params);
+    } catch (const std::exception& e) {
+        error_ = e.what();
+    }
+}
+
 bool Demo::reset_pending() const {
     const Params& now = world_->params();
     const Params& built = scene_.params;

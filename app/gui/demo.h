@@ -49,6 +49,10 @@ public:
     const Params& params() const { return world_->params(); }
     // A rigid body's keys: restitution and friction apply now, the rest at reset.
     void edit_rigid_body(std::size_t index, const RigidBodyDef& def);
+    const RigidBodyDef& rigid_body_def(std::size_t index) const { return scene_.rigid_bodies[index]; }
+    // One key as --set takes it: a world or flat-body key, or NAME.KEY for a named body. Shows
+    // what is wrong as the error instead of throwing.
+    void set_key(const std::string& key, const std::string& value);
     // The scene as it stands: what a preset saves (the current params, every body).
     Scene scene() const;
     bool reset_pending() const;  // a key that applies at reset differs from what the world was built with

@@ -79,6 +79,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                 case GLFW_KEY_S: demo.overlays.springs = !demo.overlays.springs; break;
                 case GLFW_KEY_C: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;
                 case GLFW_KEY_V: demo.overlays.velocities = !demo.overlays.velocities; break;
+                case GLFW_KEY_W: demo.overlays.angular = !demo.overlays.angular; break;
                 case GLFW_KEY_H:
                 case GLFW_KEY_F1: ui.toggle_help = true; break;
                 case GLFW_KEY_ESCAPE: ui.close_help = true; break;

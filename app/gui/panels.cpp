@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "gui/demo.h"
 #include "physics/pair_forces.h"
+#include "physics/rigid_body.h"
 #include "physics/scene_io.h"
 
 namespace softbody::app {
@@ -110,6 +111,9 @@ void Panels::draw(Demo& demo, float fps) {
     if (ImGui::CollapsingHeader("Stability", ImGuiTreeNodeFlags_DefaultOpen)) stability(demo);
     if (ImGui::CollapsingHeader("Energy", ImGuiTreeNodeFlags_DefaultOpen)) energy(demo);
     if (ImGui::CollapsingHeader("Parameters")) parameters(demo);
+    if (demo.world().rigid_body_count() > 0 && ImGui::CollapsingHeader("Rigid bodies", ImGuiTreeNodeFlags_DefaultOpen)) {
+        rigid_bodies(demo);
+    }
     if (ImGui::CollapsingHeader("Mesh")) mesh(demo);
     if (ImGui::CollapsingHeader("Display")) display(demo);
     if (ImGui::CollapsingHeader("Presets")) presets(demo);
@@ -186,11 +190,17 @@ void Panels::energy(Demo& demo) {
         ImGui::TextDisabled("no samples yet");
         return;
     }
+    // The rigid bodies' rotational energy is drawn when there are rigid bodies.
+    const bool rotation = demo.world().rigid_body_count() > 0;
+    const int series_count = rotation ? 5 : 4;
+    const auto value_of = [](const EnergySample& s, int series) {
+        return series == 0 ? s.kinetic : series == 1 ? s.gravity : series == 2 ? s.elastic : series == 3 ? s.total : s.rotational;
+    };
     double lo = 1e300, hi = -1e300;
     for (const auto& s : history) {
-        for (double v : {s.kinetic, s.gravity, s.elastic, s.total}) {
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
+        for (int series = 0; series < series_count; ++series) {
+            lo = std::min(lo, value_of(s, series));
+            hi = std::max(hi, value_of(s, series));
         }
     }
     if (hi - lo < 1e-9) hi = lo + 1.0;
@@ -199,25 +209,29 @@ void Panels::energy(Demo& demo) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
     draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
     const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
-    const ImU32 colours[4] = {IM_COL32(90, 170, 255, 255), IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
-                              IM_COL32(240, 240, 240, 255)};
-    for (int series = 0; series < 4; ++series) {
+    const ImU32 colours[5] = {IM_COL32(90, 170, 255, 255), IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
+                              IM_COL32(240, 240, 240, 255), IM_COL32(250, 200, 30, 255)};
+    for (int series = 0; series < series_count; ++series) {
         std::vector<ImVec2> points;
         points.reserve(history.size());
         for (const auto& s : history) {
-            const double v = series == 0 ? s.kinetic : series == 1 ? s.gravity : series == 2 ? s.elastic : s.total;
+            const double v = value_of(s, series);
             points.emplace_back(origin.x + float((s.time - t0) / (t1 - t0)) * size.x,
                                 origin.y + size.y - float((v - lo) / (hi - lo)) * size.y);
         }
         draw->AddPolyline(points.data(), static_cast<int>(points.size()), colours[series], 0, series == 3 ? 2.0f : 1.5f);
     }
     ImGui::Dummy(size);
-    const char* names[4] = {"kinetic", "gravity", "elastic", "total"};
+    const char* names[5] = {"kinetic", "gravity", "elastic", "total", "rotational"};
     const auto& last = history.back();
-    const double values[4] = {last.kinetic, last.gravity, last.elastic, last.total};
-    for (int series = 0; series < 4; ++series) {
+    for (int series = 0; series < series_count; ++series) {
         if (series % 2) ImGui::SameLine(180 * scale_);
-        ImGui::TextColored(ImColor(colours[series]), "%s %.1f J", names[series], values[series]);
+        ImGui::TextColored(ImColor(colours[series]), "%s %.3g J", names[series], value_of(last, series));
+    }
+    if (rotation) {
+        ImGui::SameLine(180 * scale_);
+        ImGui::Text("|L| %.3g kg m^2/s", last.angular_momentum);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Total angular momentum about the origin, every body: conserved without torques.");
     }
     ImGui::TextDisabled("last %.0f s, from %.1f to %.1f J", t1 - t0, lo, hi);
 }
@@ -247,8 +261,9 @@ void Panels::parameters(Demo& demo) {
             }
             case ParamType::Int: {
                 int value = std::stoi(param_text(params, key));
-                edited = ImGui::SliderInt(label.c_str(), &value, 1, 64);
-                if (edited) set_param(params, key, std::to_string(std::max(1, value)));
+                const int lowest = static_cast<int>(info.min);
+                edited = ImGui::SliderInt(label.c_str(), &value, lowest, key == "renormalize_every" ? 50 : 64);
+                if (edited) set_param(params, key, std::to_string(std::max(lowest, value)));
                 break;
             }
             case ParamType::Bool: {
@@ -308,18 +323,23 @@ void Panels::parameters(Demo& demo) {
 
 void Panels::mesh(Demo& demo) {
     const World& world = demo.world();
-    const Mesh& mesh = world.mesh();
-    ImGui::TextWrapped("%s", fs::path(mesh.source).filename().string().c_str());
-    ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
-    ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), world.spring_count());
-    ImGui::Text("memory %s", memory_text(world.particle_count()).c_str());
+    const bool soft = world.soft_body_count() > 0;
+    if (soft) {
+        const Mesh& mesh = world.mesh();
+        ImGui::TextWrapped("%s", fs::path(mesh.source).filename().string().c_str());
+        ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+        ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), world.spring_count());
+        ImGui::Text("memory %s", memory_text(world.particle_count()).c_str());
+    } else {
+        ImGui::TextWrapped("No soft body in this scene: open a mesh to add one.");
+    }
     if (ImGui::BeginCombo("scene", fs::path(demo.source()).filename().string().c_str())) {
         for (const auto& scene : scenes_) {
             if (ImGui::Selectable(fs::path(scene).stem().string().c_str())) demo.load_scene_file(scene);
         }
         ImGui::EndCombo();
     }
-    if (ImGui::BeginCombo("mesh", fs::path(mesh.source).filename().string().c_str())) {
+    if (ImGui::BeginCombo("mesh", soft ? fs::path(world.mesh().source).filename().string().c_str() : "(none)")) {
         for (const auto& file : meshes_) {
             if (ImGui::Selectable(fs::path(file).filename().string().c_str())) demo.load_mesh_file(file);
         }
@@ -329,6 +349,77 @@ void Panels::mesh(Demo& demo) {
     ImGui::SameLine();
     if (ImGui::Button("Open") && open_path_[0]) demo.load_mesh_file(open_path_);
     ImGui::TextDisabled("or drop a file on the window");
+}
+
+void Panels::rigid_bodies(Demo& demo) {
+    const World& world = demo.world();
+    const int count = static_cast<int>(world.rigid_body_count());
+    rigid_selected_ = std::clamp(rigid_selected_, 0, count - 1);
+    if (ImGui::BeginCombo("body##rigid", world.rigid_body(std::size_t(rigid_selected_)).name.c_str())) {
+        for (int b = 0; b < count; ++b) {
+            if (ImGui::Selectable(world.rigid_body(std::size_t(b)).name.c_str(), b == rigid_selected_)) rigid_selected_ = b;
+        }
+        ImGui::EndCombo();
+    }
+    const std::size_t i = std::size_t(rigid_selected_);
+    const RigidBody& body = world.rigid_body(i);
+    RigidBodyDef def = demo.rigid_body_def(i);
+    ImGui::TextDisabled("%s, volume %.4g m^3%s", std::string(to_string(body.shape)).c_str(), body.volume,
+                        body.hull_mass_properties ? " (its hull's: the mesh is open)" : "");
+
+    // Keys: restitution and friction act at once; mass and fixed at reset.
+    bool edited = false;
+    float mass = float(body.mass);
+    if (ImGui::SliderFloat("mass *", &mass, 0.01f, 1000.0f, "%.3g kg", ImGuiSliderFlags_Logarithmic)) {
+        def.mass = double(std::max(mass, 1e-3f));
+        def.density.reset();
+        edited = true;
+    }
+    if (ImGui::Checkbox("fixed *", &def.fixed)) edited = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Infinite mass: scenery such as a fulcrum or a ramp.");
+    float e = def.restitution.value_or(demo.params().restitution);
+    if (ImGui::SliderFloat("restitution e", &e, 0.0f, 1.0f, "%.2f")) {
+        def.restitution = e;
+        edited = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Eq. 38: an impact's normal velocity leaves at -e times the speed it came in with.");
+    float mu = def.friction.value_or(demo.params().dynamic_friction);
+    if (ImGui::SliderFloat("friction mu", &mu, 0.0f, 2.0f, "%.2f")) {
+        def.friction = mu;
+        edited = true;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Coulomb friction in impulse form: |tangential impulse| <= mu x normal impulse.");
+    if (edited) demo.edit_rigid_body(i, def);
+    if (demo.reset_pending()) {
+        ImGui::TextDisabled("* applies on reset");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("reset now##rigid")) demo.reset();
+    }
+
+    // State: Listing 10's thirteen numbers and what follows from them (Eq. 28, 32, 36).
+    const RigidMotion m = world.rigid_motion(i);
+    ImGui::Text("x     %8.3f %8.3f %8.3f m", m.x.x, m.x.y, m.x.z);
+    ImGui::Text("P     %8.3f %8.3f %8.3f kg m/s", m.P.x, m.P.y, m.P.z);
+    ImGui::Text("L     %8.3f %8.3f %8.3f kg m^2/s", m.L.x, m.L.y, m.L.z);
+    ImGui::Text("q     %7.4f %7.4f %7.4f %7.4f", m.q.w, m.q.x, m.q.y, m.q.z);
+    const double norm = m.q.norm();
+    ImGui::TextColored(std::abs(norm - 1.0) > 1e-3 ? ImVec4(1.0f, 0.55f, 0.3f, 1.0f) : ImVec4(0.7f, 0.7f, 0.7f, 1.0f),
+                       "|q| = %.9f", norm);
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("A unit quaternion has |q| = 1; rounding and explicit Euler make it drift, and a drifted q\n"
+                          "no longer rotates: it scales and shears. Listing 9 renormalises every few steps\n"
+                          "(renormalize_every; 0 lets you watch it drift).");
+    }
+    ImGui::Text("v     %8.3f %8.3f %8.3f m/s", m.v.x, m.v.y, m.v.z);
+    ImGui::Text("omega %8.3f %8.3f %8.3f rad/s", m.omega.x, m.omega.y, m.omega.z);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Eq. 36: omega = R J_body^-1 R^T L, after each step.");
+    const Mat3 J = m.R * body.J_body * m.R.transposed();
+    ImGui::TextDisabled("J_world = R J_body R^T (Eq. 32), kg m^2:");
+    for (int r = 0; r < 3; ++r) ImGui::Text("      %9.4f %9.4f %9.4f", J.m[r][0], J.m[r][1], J.m[r][2]);
+    if (!body.fixed) {
+        ImGui::Text("kinetic %.4g J = %.4g translation + %.4g rotation", 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega),
+                    0.5 * dot(m.P, m.v), 0.5 * dot(m.L, m.omega));
+    }
 }
 
 void Panels::display(Demo& demo) {
@@ -346,6 +437,15 @@ void Panels::display(Demo& demo) {
     ImGui::Checkbox("normals", &o.normals);
     ImGui::SameLine(180 * scale_);
     ImGui::Checkbox("shadows", &a.shadows);
+    ImGui::Checkbox("omega and L (W)", &o.angular);
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Each rigid body's angular velocity (yellow) and angular momentum (violet) at its centre of mass:\n"
+                          "L = J omega (Eq. 28); they point the same way only about a principal axis.");
+    }
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("contacts", &o.contacts);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Contact points of the last step, each normal as long as its impulse (Eq. 38).");
+    ImGui::Checkbox("springs between bodies", &o.links);
     ImGui::Checkbox("ground and grid", &a.ground);
     ImGui::SameLine(180 * scale_);
     ImGui::Checkbox("follow body", &demo.follow);
@@ -397,7 +497,7 @@ void Panels::help() {
                             ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     ImGui::Begin("Controls", &show_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
     const char* rows[][2] = {
-        {"left-drag on the body", "grab a particle and pull it"},
+        {"left-drag on a body", "grab a particle (or a rigid body's point) and pull it"},
         {"shift + left-click", "pin or free a particle"},
         {"left/right-drag", "orbit the camera"},
         {"middle-drag, ctrl + right-drag", "pan"},
@@ -406,7 +506,7 @@ void Panels::help() {
         {"Space", "pause / play"},
         {"N or .", "one tick"},
         {"R", "reset"},
-        {"P  S  C  V", "particles, springs, centre of mass, velocities"},
+        {"P  S  C  V  W", "particles, springs, centre of mass, velocities, omega and L"},
         {"Tab", "hide / show the panels"},
         {"H, F1 / Esc", "this help / close it"},
         {"drop a file", "load an .obj or .off mesh"},

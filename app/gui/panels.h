@@ -25,6 +25,7 @@ private:
     void simulation(Demo& demo, float fps);
     void parameters(Demo& demo);
     void mesh(Demo& demo);
+    void rigid_bodies(Demo& demo);
     void display(Demo& demo);
     void energy(Demo& demo);
     void stability(Demo& demo);
@@ -37,6 +38,7 @@ private:
     char open_path_[1024] = {};
     char preset_path_[1024] = {};
     std::string confirm_overwrite_;             // path awaiting "overwrite?" (empty: none)
+    int rigid_selected_ = 0;                    // the rigid body the panel shows
 };
 
 }  // namespace softbody::app

@@ -20,7 +20,7 @@ const std::map<std::string, int>& key_names() {
     static const std::map<std::string, int> keys = {
         {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"r", GLFW_KEY_R},
         {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
-        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
+        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
     };
     return keys;
 }
@@ -85,7 +85,7 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             command.verb = "input";
         } else if (verb == "key") {
             e.type = InputEvent::Type::Key;
-            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period r f h f1 p s c v tab escape");
+            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period r f h f1 p s c v w tab escape");
             e.key = key_names().at(args[0]);
             command.verb = "input";
         } else if (verb == "set") {

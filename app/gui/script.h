@@ -6,7 +6,7 @@
 //   40       release   left
 //   50       scroll    -2               wheel clicks
 //   60       key       space            space n r f h p s c v tab escape
-//   70       set       stiffness 40     as --set, or a slider
+//   70       set       stiffness 40     as --set, or a slider (plank.mass 7 for a named body)
 //   80       load_scene assets/scenes/pig.json
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]

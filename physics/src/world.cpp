@@ -317,7 +317,7 @@ void World::step(float h) {
             if (!rigid_.empty()) {
                 // Momenta first, then positions from the new momenta (Verlet is this for a rigid body).
                 flat_euler_momenta(y_, k_[0], hd);
-                advance_rigid_positions(hd);
+                symplectic_positions(rigid_, y_step_start_, y_, hd);
             }
             break;
         case Integrator::ExplicitEuler:
@@ -345,21 +345,6 @@ void World::step(float h) {
     if (!rigid_.empty()) solve_rigid_contacts(h);
 }
 
-// Symplectic Euler's second half for the rigid bodies: x and q from the step's start, moved by
-// the momenta as they are now (dx/dt = P / m, dq/dt = 1/2 w q with w from the new L).
-void World::advance_rigid_positions(double h) {
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        const std::size_t at = b * rigid::kStateSize;
-        double start[rigid::kStateSize];
-        std::copy_n(&y_step_start_[at], rigid::kStateSize, start);
-        for (int k : {rigid::P, rigid::P + 1, rigid::P + 2, rigid::L, rigid::L + 1, rigid::L + 2}) start[k] = y_[at + std::size_t(k)];
-        rigid_derivative(rigid_[b], start, {}, {}, &k_[1][at]);
-        for (int k : {rigid::X, rigid::X + 1, rigid::X + 2, rigid::Q, rigid::Q + 1, rigid::Q + 2, rigid::Q + 3}) {
-            y_[at + std::size_t(k)] = start[k] + h * k_[1][at + std::size_t(k)];
-        }
-    }
-}
-
 // Eq. 37 and 38 at every contact of the step, with the ground a static body. The contacts are
 // found where the integrator took the bodies (their predicted positions), the impulses change
 // the momenta, and then, for symplectic Euler and Verlet, whose positions follow from the new
@@ -384,7 +369,7 @@ void World::solve_rigid_contacts(float h) {
     settings.bounce_speed = 2.0 * std::abs(double(params_.gravity.z)) * double(h);
     solve_contact_velocities(contacts_, previous_contacts_, bodies, settings);
     if (settings.speculative && !contacts_.empty()) {
-        advance_rigid_positions(h);
+        symplectic_positions(rigid_, y_step_start_, y_, h);
         apply_bounce_shifts(contacts_, bodies);
     }
     solve_contact_positions(contacts_, bodies, settings);

@@ -179,7 +179,6 @@ private:
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
     void solve_rigid_contacts(float h);
-    void advance_rigid_positions(double h);
     void check_divergence();
     void take_energy_baseline();
     double kinetic_plus_gravity() const;
