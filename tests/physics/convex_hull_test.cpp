@@ -18,6 +18,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -355,14 +356,22 @@ bool same(const ConvexHull& a, const ConvexHull& b) {
     return true;
 }
 
-// The same points give the same hull, bit for bit; the same points in another order give the
-// same vertices (as positions) and faces, so the result does not hang on the listing.
+// The same points give the same hull, bit for bit, also on another thread at the same time;
+// the same points in another order give the same vertices (as positions) and as many faces, so
+// the result does not hang on the listing.
 TEST(ConvexHull, SamePointsSameHull) {
     std::vector<Vec3d> cloud = on_sphere(3000, 10);
     append(cloud, in_box(500, 11, {1, 1, 1}));
     const ConvexHull first = convex_hull(cloud);
     const ConvexHull second = convex_hull(cloud);
     EXPECT_TRUE(same(first, second));
+    // Two at once, on two threads: each call keeps Qhull's state to itself.
+    ConvexHull elsewhere;
+    std::thread other([&] { elsewhere = convex_hull(cloud); });
+    const ConvexHull here = convex_hull(cloud);
+    other.join();
+    EXPECT_TRUE(same(first, elsewhere));
+    EXPECT_TRUE(same(first, here));
 
     std::vector<Vec3d> shuffled = cloud;
     std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(12));
