@@ -18,6 +18,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -230,13 +231,14 @@ TEST(ConvexHull, CoplanarFacetsAreMergedIntoPolygons) {
     EXPECT_EQ(corners[4], n);
 }
 
-// A box 40 x 25 x 10 mm, its faces sampled on a grid, turned and placed 1.5 m from the origin,
-// its points stored in float as a mesh file would hold them: off their planes by up to 6e-5 mm
-// (half a float ulp at 1500). It must still be a box: 8 corners, 6 quadrilaterals, 12 edges,
-// with every point under every face within 5 merge tolerances (of 1e-6 of 1500 mm).
+// A box 40 x 25 x 10 mm, its faces sampled on a grid (edges and corners included), turned and
+// placed 9 m from the origin, its points stored in float as a mesh file would hold them: off
+// their planes by up to 5e-4 mm (half a float ulp at 9000), ten times 1e-6 of the box's size.
+// It must still be a box: 8 corners, 6 quadrilaterals, 12 edges, with every point under every
+// face within 5 merge tolerances (of 1e-6 of 9000 mm).
 TEST(ConvexHull, TurnedFloatBoxInMillimetresKeepsSixFaces) {
     const Vec3d size{40.0, 25.0, 10.0};
-    const Vec3d at{1500.0, -800.0, 300.0};
+    const Vec3d at{9000.0, -4000.0, 2500.0};
     const Mat3 R = Quat::from_axis_angle(normalize(Vec3d{1.0, -2.0, 0.5}), 0.9).to_matrix();
     std::vector<Vec3d> points;
     const int n = 8;
@@ -354,14 +356,22 @@ bool same(const ConvexHull& a, const ConvexHull& b) {
     return true;
 }
 
-// The same points give the same hull, bit for bit; the same points in another order give the
-// same vertices (as positions) and faces, so the result does not hang on the listing.
+// The same points give the same hull, bit for bit, also on another thread at the same time;
+// the same points in another order give the same vertices (as positions) and as many faces, so
+// the result does not hang on the listing.
 TEST(ConvexHull, SamePointsSameHull) {
     std::vector<Vec3d> cloud = on_sphere(3000, 10);
     append(cloud, in_box(500, 11, {1, 1, 1}));
     const ConvexHull first = convex_hull(cloud);
     const ConvexHull second = convex_hull(cloud);
     EXPECT_TRUE(same(first, second));
+    // Two at once, on two threads: each call keeps Qhull's state to itself.
+    ConvexHull elsewhere;
+    std::thread other([&] { elsewhere = convex_hull(cloud); });
+    const ConvexHull here = convex_hull(cloud);
+    other.join();
+    EXPECT_TRUE(same(first, elsewhere));
+    EXPECT_TRUE(same(first, here));
 
     std::vector<Vec3d> shuffled = cloud;
     std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(12));

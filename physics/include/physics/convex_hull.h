@@ -42,8 +42,8 @@ struct ConvexHull {
 // again, until the budget is spent. That hull lies inside the full one, and close to it.
 //
 // Facets closer to coplanar than a tolerance are merged into one polygon (a box whose corners
-// were stored in float, say, keeps six faces), and a vertex lying on an edge between two faces
-// is dropped. The tolerance is 1e-6 of the larger of the points' bounding-box diagonal and their
+// were stored in float, say, keeps six faces), and points on an edge or a face are not
+// vertices. The tolerance is 1e-6 of the larger of the points' bounding-box diagonal and their
 // largest coordinate. Merges add up, so a merged face's corners, and any point, can lie off its
 // plane by a few tolerances (under 3 in tests); otherwise every point lies under every face
 // plane, unless the budget left it outside. Deterministic: the same points give the same hull,
