@@ -106,15 +106,21 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
         c.approach_speed = -row.v_n0;
         // Stop the approach; a contact still apart may close its gap this step, no more.
         row.target = settings.speculative ? -std::max(c.separation, 0.0) / settings.h : 0.0;
-        // Warm start from the same contact last step.
+    }
+    // Warm start from the same contacts last step, once every approach is measured.
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        RigidContact& c = contacts[i];
+        Row& row = rows[i];
         c.normal_impulse = 0.0;
         c.tangent_impulse[0] = c.tangent_impulse[1] = 0.0;
         const auto found = std::lower_bound(last.begin(), last.end(), key_of(c), [&](std::size_t k, const Key& key) {
             return key_of(previous[k]) < key;
         });
         if (found != last.end() && key_of(previous[*found]) == key_of(c)) {
+            // The impulse that held it, not the bounce: starting a contact that just bounced from
+            // its bounce would throw the body up again (a box landing flat then rocks for ever).
             const RigidContact& p = previous[*found];
-            c.normal_impulse = p.normal_impulse;
+            c.normal_impulse = p.resting_impulse;
             c.tangent_impulse[0] = p.tangent_impulse[0];
             c.tangent_impulse[1] = p.tangent_impulse[1];
             const Vec3d j = c.normal * c.normal_impulse + row.t1 * c.tangent_impulse[0] + row.t2 * c.tangent_impulse[1];
@@ -155,14 +161,41 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
         }
     }
 
-    // Restitution: a contact that took an impulse, hit faster than a resting contact does,
-    // leaves at -e times the speed it came in with (Eq. 38's (1 + e)). A few passes, so that
-    // several points landing at once (a box flat on its face) bounce together.
-    for (int iteration = 0; iteration < settings.restitution_iterations; ++iteration) {
+    for (RigidContact& c : contacts) c.resting_impulse = c.normal_impulse;
+
+    // Restitution: a contact hit this step (its gap closes within it) leaves at -e times the
+    // speed it came in with (Eq. 38's (1 + e)), when its pair of bodies meets faster than a
+    // resting contact does. Whether it was hit, not whether it took an impulse: four corners
+    // of a face landing flat share the impulse in many ways (three would do), and a corner
+    // left without any must bounce too. And the pair decides, not each point: corners coming
+    // down at about the resting speed would otherwise bounce or not by a hair, and a box would
+    // rock on them for ever. A few passes, so that the points of a face bounce together.
+    // The pair's approach speed is the mean over its points hit: a face coming down while it
+    // turns has some corners faster and some slower, and the turn alone is no impact.
+    std::vector<char> hit(contacts.size(), 0);
+    std::vector<std::pair<Key, double>> approach;  // (pair, speed) per point hit, then summed
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const RigidContact& c = contacts[i];
+        hit[i] = settings.speculative ? c.separation + settings.h * rows[i].v_n0 <= 0.0 : c.depth >= 0.0;
+        if (hit[i]) approach.emplace_back(Key{c.a, c.b, 0}, -rows[i].v_n0);
+    }
+    std::sort(approach.begin(), approach.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<Key> bouncing;
+    for (std::size_t i = 0; i < approach.size();) {
+        std::size_t j = i;
+        double sum = 0.0;
+        for (; j < approach.size() && approach[j].first == approach[i].first; ++j) sum += approach[j].second;
+        if (sum / double(j - i) > settings.bounce_speed) bouncing.push_back(approach[i].first);
+        i = j;
+    }
+    for (int iteration = 0; iteration < settings.restitution_iterations && !bouncing.empty(); ++iteration) {
         for (std::size_t i = 0; i < contacts.size(); ++i) {
             RigidContact& c = contacts[i];
             Row& row = rows[i];
-            if (c.restitution == 0.0 || c.normal_impulse == 0.0 || !(row.v_n0 < -settings.bounce_speed)) continue;
+            if (c.restitution == 0.0 || !hit[i] || !(row.v_n0 < 0.0) ||
+                !std::binary_search(bouncing.begin(), bouncing.end(), Key{c.a, c.b, 0})) {
+                continue;
+            }
             const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
             const double target = -c.restitution * row.v_n0;
             const double lambda = std::max(c.normal_impulse + (target - dot(v_rel, c.normal)) / row.k_n, 0.0);

@@ -41,7 +41,7 @@ struct SolverSettings {
                                     // Euler): a contact apart at the start may close its gap
     double bounce_speed = 0.0;      // slower impacts are resting contact: they bounce with e = 0, m/s
     int velocity_iterations = 10;
-    int restitution_iterations = 4;
+    int restitution_iterations = 10;
     int position_iterations = 5;
     double slop = 2e-4;             // m of penetration left alone: contact persists, nothing jitters
     double position_rate = 0.8;     // fraction of the penetration beyond the slop removed per pass

@@ -25,6 +25,7 @@ struct RigidContact {
     double approach_speed = 0.0; // -v_rel . n before the impulses (> 0: closing), m/s
     double normal_impulse = 0.0; // lambda, N s
     double tangent_impulse[2] = {0.0, 0.0};
+    double resting_impulse = 0.0;  // lambda before the restitution pass: what the next step starts from
     double bounce_shift = 0.0;   // m: how far a bounce from a gap moves the bodies back (see contact_solver.h)
 };
 
