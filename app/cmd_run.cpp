@@ -25,6 +25,7 @@
 #include "physics/scene_io.h"
 #include "render/image.h"
 #include "render/renderer.h"
+#include "world_json.h"
 
 namespace softbody::app {
 
@@ -199,7 +200,7 @@ int run_command(int argc, char** argv, int first) {
         {"mesh", soft ? world.mesh().source : ""}, {"particles", soft ? world.particle_count() : 0}, {"ticks", world.ticks()},
         {"sim_time", world.time()},   {"com", {com.x, com.y, com.z}},       {"status", world.status() == Status::Ok ? "ok" : "diverged"},
         {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
-        {"rigid_bodies", world.rigid_body_count()},
+        {"rigid_bodies", rigid_bodies_json(world)},
         {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
     // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.

@@ -12,6 +12,7 @@
 #include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/world.h"
+#include "world_json.h"
 
 namespace softbody::app {
 
@@ -71,28 +72,6 @@ private:
     Kind kind_;
     std::FILE* file_;
 };
-
-nlohmann::ordered_json vec(const Vec3d& v) { return {v.x, v.y, v.z}; }
-
-nlohmann::ordered_json rigid_body_json(const World& world, std::size_t b) {
-    const RigidBody& body = world.rigid_body(b);
-    const RigidMotion m = world.rigid_motion(b);
-    const Mat3 J = m.R * body.J_body * m.R.transposed();  // Eq. 32, world axes
-    nlohmann::ordered_json inertia = nlohmann::ordered_json::array();
-    for (int i = 0; i < 3; ++i) inertia.push_back({J.m[i][0], J.m[i][1], J.m[i][2]});
-    const double kinetic = body.fixed ? 0.0 : 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
-    return {{"name", body.name},
-            {"shape", std::string(to_string(body.shape))},
-            {"mass", body.mass},
-            {"fixed", body.fixed},
-            {"position", vec(m.x)},
-            {"orientation", {m.q.w, m.q.x, m.q.y, m.q.z}},
-            {"velocity", vec(m.v)},
-            {"angular_velocity", vec(m.omega)},
-            {"angular_momentum", vec(m.L)},
-            {"inertia", inertia},
-            {"kinetic_energy", kinetic}};
-}
 
 }  // namespace
 
@@ -174,13 +153,9 @@ int simulate_command(int argc, char** argv) {
         {"status", ok ? "ok" : "diverged"},
         {"state_hash", hash},
     };
-    if (world.rigid_body_count() > 0) {
-        nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-        for (std::size_t b = 0; b < world.rigid_body_count(); ++b) bodies.push_back(rigid_body_json(world, b));
-        out["rigid_bodies"] = bodies;
-    }
-    out["momentum"] = vec(world.momentum());
-    out["angular_momentum"] = vec(world.angular_momentum());
+    if (world.rigid_body_count() > 0) out["rigid_bodies"] = rigid_bodies_json(world);
+    out["momentum"] = vec_json(world.momentum());
+    out["angular_momentum"] = vec_json(world.angular_momentum());
     if (!ok) out["reason"] = world.divergence();
     // A file name need not be UTF-8: its odd bytes are replaced in the summary, not fatal.
     std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;

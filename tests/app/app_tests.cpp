@@ -104,6 +104,29 @@ TEST(App, DraggingTheBodyLiftsIt) {
     EXPECT_GT(com_z(dragged), com_z(still) + 0.3) << "the drag did not lift the body";
 }
 
+TEST(App, DraggingARigidBodyByItsEndLiftsAndTurnsIt) {
+    // A plank lying on the ground; grab its right end (where it is drawn in a 960x600 window)
+    // and pull up: the pull acts at the grabbed point, so the plank rises and tilts.
+    const fs::path scene = scratch() / "plank.json";
+    std::ofstream(scene) << "{\"rigid_bodies\": [{\"name\": \"plank\", \"shape\": \"box\", \"size\": [2.0, 0.4, 0.1],"
+                            " \"mass\": 4, \"position\": [0, 0, 0.05]}]}";
+    const fs::path script = write_script("plank_drag.script",
+                                         "10 move 0.77 0.48\n"
+                                         "11 press left\n"
+                                         "12 move 0.77 0.45\n"
+                                         "20 move 0.77 0.35\n"
+                                         "30 move 0.77 0.25\n");
+    const Result r = run_app("--scene " + quote(scene.string()) + " --size 960x600 --frames 60 --script " + quote(script.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(r.summary["rigid_bodies"].size(), 1u) << r.out;
+    const auto& plank = r.summary["rigid_bodies"][0];
+    EXPECT_GT(plank["position"][2].get<double>(), 0.3) << "the drag did not lift the plank";
+    // How far the plank's long axis (its x) points up: R's x column, z row, 2 (x z - w y).
+    const auto& q = plank["orientation"];
+    const double up = 2.0 * (q[1].get<double>() * q[3].get<double>() - q[0].get<double>() * q[2].get<double>());
+    EXPECT_GT(std::abs(up), 0.3) << "pulled at its end, the plank should tilt";
+}
+
 TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     const fs::path preset = scratch() / "presets" / "mine.json";
     fs::remove_all(preset.parent_path());

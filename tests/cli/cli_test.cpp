@@ -250,6 +250,86 @@ TEST(Simulate, DumpWritesCsvEveryKTicksFromTickZero) {
     EXPECT_NEAR(com_z, j.at("com")[2].get<double>(), 1e-6);  // %.9g in the CSV
 }
 
+// --- Rigid bodies ---------------------------------------------------------------------------
+
+// A box thrown spinning into empty space (no gravity, no ground): its summary entry has every
+// field of the contract, and they agree with the closed form of free flight.
+const char* kThrownBox =
+    "{\"gravity\": [0, 0, 0], \"ground\": false, \"rigid_bodies\": [{\"name\": \"crate\", \"shape\": \"box\","
+    " \"size\": [1, 2, 3], \"mass\": 6, \"position\": [0, 0, 1], \"velocity\": [1, 0, 0], \"angular_velocity\": [0, 0, 2]}]}";
+
+TEST(Simulate, RigidBodiesAreReportedWithMomentumAndInertia) {
+    TempDir dir;
+    const std::string scene = dir.write("box.json", kThrownBox);
+    const Result r = run({"simulate", "--scene", scene, "--ticks", "50"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("particles"), 0);  // no "mesh": no soft body
+    ASSERT_EQ(j.at("rigid_bodies").size(), 1u);
+    const json& b = j.at("rigid_bodies")[0];
+    for (const char* key : {"name", "mass", "position", "orientation", "velocity", "angular_velocity", "angular_momentum",
+                            "inertia", "kinetic_energy"}) {
+        EXPECT_TRUE(b.contains(key)) << key;
+    }
+    EXPECT_EQ(b.at("name"), "crate");
+    EXPECT_EQ(b.at("mass"), 6.0);
+    // One second at 1 m/s along x (symplectic Euler is exact for constant velocity), turning
+    // about its own z axis, a principal axis: w stays (0, 0, 2) and q = (cos 1, 0, 0, sin 1).
+    EXPECT_NEAR(b.at("position")[0].get<double>(), 50 * double(0.02f), 1e-12);
+    EXPECT_NEAR(b.at("angular_velocity")[2].get<double>(), 2.0, 1e-12);
+    EXPECT_NEAR(b.at("orientation")[0].get<double>(), std::cos(50 * double(0.02f)), 1e-9);
+    EXPECT_NEAR(b.at("orientation")[3].get<double>(), std::sin(50 * double(0.02f)), 1e-9);
+    // J in world axes (Eq. 32), 3x3 rows: about z it is m (a^2 + b^2) / 12 = 2.5 whatever the turn.
+    EXPECT_EQ(b.at("inertia").size(), 3u);
+    EXPECT_NEAR(b.at("inertia")[2][2].get<double>(), 6.0 * (1.0 + 4.0) / 12.0, 1e-12);
+    EXPECT_NEAR(b.at("angular_momentum")[2].get<double>(), 2.5 * 2.0, 1e-12);
+    // 1/2 m v^2 + 1/2 J w^2 = 3 + 5.
+    EXPECT_NEAR(b.at("kinetic_energy").get<double>(), 3.0 + 5.0, 1e-9);
+    // World totals about the origin: P = m v; L = x x P + L_spin, with x x P = (0, 0, 1) x (6, 0, 0) = (0, 6, 0).
+    EXPECT_NEAR(j.at("momentum")[0].get<double>(), 6.0, 1e-12);
+    EXPECT_NEAR(j.at("angular_momentum")[1].get<double>(), 6.0, 1e-12);
+    EXPECT_NEAR(j.at("angular_momentum")[2].get<double>(), 5.0, 1e-12);
+}
+
+TEST(Simulate, DumpBodiesWritesEveryRigidBodyEveryKTicks) {
+    TempDir dir;
+    const std::string scene = dir.write("box.json", kThrownBox);
+    const std::string csv = dir.file("bodies.csv");
+    const Result r = run({"simulate", "--scene", scene, "--ticks", "20", "--dump-bodies", csv, "--dump-every", "10"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    std::istringstream lines(read_text(csv));
+    std::string line;
+    ASSERT_TRUE(std::getline(lines, line));
+    EXPECT_EQ(line, "tick,time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,Lx,Ly,Lz");
+    std::vector<std::string> rows;
+    while (std::getline(lines, line)) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 3u);  // ticks 0, 10, 20
+    EXPECT_EQ(rows[0].rfind("0,0,crate,0,0,1,1,0,0,0,1,0,0,0,0,2,", 0), 0u) << rows[0];
+    EXPECT_EQ(rows[2].rfind("20,", 0), 0u) << rows[2];
+    EXPECT_EQ(std::count(rows[2].begin(), rows[2].end(), ','), 18);
+}
+
+TEST(Simulate, SetByBodyNameChangesThatBody) {
+    TempDir dir;
+    const std::string scene = dir.write("box.json", kThrownBox);
+    const Result r = run({"simulate", "--scene", scene, "--ticks", "1", "--set", "crate.mass=3"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(json::parse(r.out).at("rigid_bodies")[0].at("mass"), 3.0);
+    expect_refused({"simulate", "--scene", scene, "--ticks", "1", "--set", "crate.mass=-3"}, {"'crate'", "'mass'"});
+    expect_refused({"simulate", "--scene", scene, "--ticks", "1", "--set", "cart.mass=3"}, {"'cart'", "crate"});
+}
+
+TEST(BadInput, BadRigidBodyNamesBodyAndKey) {
+    TempDir dir;
+    expect_refused({"simulate", "--scene", dir.write("a.json", "{\"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0}]}"),
+                    "--ticks", "1"},
+                   {"a.json:1", "'ball'", "'radius'"});
+    expect_refused({"simulate", "--scene", dir.write("b.json", "{\"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"blob\"}]}"),
+                    "--ticks", "1"},
+                   {"'ball'", "'shape'", "blob"});
+    expect_refused({"simulate", "--scene", dir.write("c.json", "{\"ground\": true}"), "--ticks", "1"}, {"nothing to simulate"});
+}
+
 // --- Bad input: exit 2, one line on stderr -------------------------------------------------
 
 TEST(BadInput, UnknownOption) {

@@ -3,7 +3,7 @@
 # Paths are relative to this folder (the command runs here).
 set(SCREENSHOT_SIZE 320x240)
 
-set(SCREENSHOT_CASES resting falling bouncing sliding springs pointcloud hanging showcase)
+set(SCREENSHOT_CASES resting falling bouncing sliding springs pointcloud hanging showcase rigid)
 
 # A smooth body settled on the floor (contact shadow, smooth shading, the floor and its grid).
 set(CASE_resting     --scene scenes/resting.json --at 4 --overlay none)
@@ -19,11 +19,14 @@ set(CASE_springs     --scene scenes/springs.json --at 0.6 --overlay springs --bo
 set(CASE_pointcloud  --scene scenes/pointcloud.json --at 0.6 --overlay particles)
 # A body hanging from two pinned particles, the pins marked.
 set(CASE_hanging     --scene scenes/hanging.json --at 1 --overlay pins)
+# Rigid bodies: a box tumbling in the air with its omega and L arrows, a cylinder lying on the
+# ground, a ball at rest (static vertex buffers drawn with model matrices, shadows, palette).
+set(CASE_rigid       --scene scenes/rigid.json --at 0.3 --overlay angular,com)
 # The README's picture, larger: a soft ball squashed on landing.
 set(CASE_showcase    --scene scenes/bouncing.json --at 0.6 --camera follow,yaw=-40,pitch=12 --size 640x360)
 
 # Faults that must make a case fail: each one is that case rendered with a deliberate change.
-set(NEGATIVE_CASES shift_x_1cm shift_z_1cm recolour no_ground flipped_normals no_shadow no_springs)
+set(NEGATIVE_CASES shift_x_1cm shift_z_1cm recolour no_ground flipped_normals no_shadow no_springs rigid_shift_1cm)
 set(NEGATIVE_shift_x_1cm     resting  --debug-offset 0.01,0,0)
 set(NEGATIVE_shift_z_1cm     falling  --debug-offset 0,0,0.01)
 set(NEGATIVE_recolour        resting  --body-color E8703A)
@@ -31,3 +34,4 @@ set(NEGATIVE_no_ground       resting  --no-ground)
 set(NEGATIVE_flipped_normals bouncing --debug-flip-normals)
 set(NEGATIVE_no_shadow       falling  --no-shadows)
 set(NEGATIVE_no_springs      springs  --overlay none)
+set(NEGATIVE_rigid_shift_1cm rigid    --debug-offset 0.01,0,0)

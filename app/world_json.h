@@ -1,0 +1,21 @@
+// The JSON that describes a world's bodies, shared by `softbody simulate`'s summary and the
+// app's: one entry per rigid body, with the fields README.md lists.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "physics/world.h"
+
+namespace softbody::app {
+
+nlohmann::ordered_json vec_json(const Vec3d& v);
+
+// name, shape, mass, fixed, position, orientation (w, x, y, z), velocity, angular_velocity,
+// angular_momentum (about its centre of mass), inertia (J in world axes, Eq. 32, rows),
+// kinetic_energy (translational plus rotational).
+nlohmann::ordered_json rigid_body_json(const World& world, std::size_t b);
+
+// Every rigid body's entry, in order.
+nlohmann::ordered_json rigid_bodies_json(const World& world);
+
+}  // namespace softbody::app

@@ -1,0 +1,233 @@
+// Rigid bodies, springs and more soft bodies in scene files: what each key does, what a file
+// that is wrong gets told (one line naming the body and the key), `--set NAME.KEY`, and saving
+// a scene keeps every body.
+#include <cmath>
+
+#include "physics/error.h"
+#include "physics/scene_io.h"
+#include "test_support.h"
+
+namespace softbody::test {
+namespace {
+
+WorldDef def_of(const std::string& json, const std::string& origin = "scene.json") {
+    return make_world_def(parse_scene(json, origin));
+}
+
+std::string one_body(const std::string& keys) {
+    return "{\"rigid_bodies\": [{\"name\": \"crate\", " + keys + "}]}";
+}
+
+// --- What the keys make ------------------------------------------------------------------------
+
+TEST(RigidScene, PrimitivesGetTableOneMassProperties) {
+    // Density 1000 by default: a 1 x 2 x 0.5 box is 1 m^3, 1000 kg; Table 1: J_xx = m (b^2 + c^2) / 12.
+    const WorldDef box = def_of(one_body("\"shape\": \"box\", \"size\": [1, 2, 0.5]"));
+    ASSERT_EQ(box.rigid_bodies.size(), 1u);
+    const RigidBody& b = box.rigid_bodies[0];
+    EXPECT_NEAR(b.mass, 1000.0, 1e-9);
+    EXPECT_NEAR(b.J_body.m[0][0], 1000.0 * (4.0 + 0.25) / 12.0, 1e-9);
+    EXPECT_NEAR(b.J_body.m[1][1], 1000.0 * (1.0 + 0.25) / 12.0, 1e-9);
+    EXPECT_NEAR(b.J_body.m[2][2], 1000.0 * (1.0 + 4.0) / 12.0, 1e-9);
+    EXPECT_NEAR(b.J_body.m[0][1], 0.0, 1e-12);
+    // "mass" instead: the same shape of tensor, scaled.
+    const WorldDef sphere = def_of(one_body("\"shape\": \"sphere\", \"radius\": 0.5, \"mass\": 3"));
+    const RigidBody& s = sphere.rigid_bodies[0];
+    EXPECT_DOUBLE_EQ(s.mass, 3.0);
+    EXPECT_NEAR(s.J_body.m[1][1], 0.4 * 3.0 * 0.25, 1e-12);  // 2/5 m r^2
+    // A cylinder's axis is its z.
+    const WorldDef cylinder = def_of(one_body("\"shape\": \"cylinder\", \"radius\": 0.2, \"height\": 1, \"mass\": 2"));
+    const RigidBody& c = cylinder.rigid_bodies[0];
+    EXPECT_NEAR(c.J_body.m[2][2], 0.5 * 2.0 * 0.04, 1e-12);
+    EXPECT_NEAR(c.J_body.m[0][0], 2.0 * (3.0 * 0.04 + 1.0) / 12.0, 1e-12);
+}
+
+TEST(RigidScene, PositionOrientationAndVelocitiesSetTheThirteenNumbers) {
+    const WorldDef def = def_of(one_body("\"shape\": \"box\", \"size\": [1, 1, 1], \"mass\": 2, \"position\": [1, 2, 3],"
+                                         " \"rotation\": [0, 0, 90], \"velocity\": [0.5, 0, 0], \"angular_velocity\": [0, 0, 3]"));
+    const auto& s = def.rigid_bodies[0].initial;
+    EXPECT_DOUBLE_EQ(s[rigid::X + 2], 3.0);
+    EXPECT_DOUBLE_EQ(s[rigid::P], 1.0);  // m v
+    // A unit cube's J = m / 6 on each axis, so L = J w = (0, 0, 1) whatever the orientation.
+    EXPECT_NEAR(s[rigid::L + 2], 2.0 / 6.0 * 3.0, 1e-12);
+    // 90 degrees about z: q = (cos 45, 0, 0, sin 45).
+    EXPECT_NEAR(s[rigid::Q], std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(s[rigid::Q + 3], std::sqrt(0.5), 1e-12);
+}
+
+TEST(RigidScene, NonUnitQuaternionIsNormalisedAndSaidSo) {
+    World world(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"orientation\": [2, 0, 0, 0]")));
+    EXPECT_DOUBLE_EQ(world.rigid_motion(0).q.w, 1.0);
+    ASSERT_EQ(world.notes().size(), 1u);
+    EXPECT_NE(world.notes()[0].find("'crate'"), std::string::npos);
+    EXPECT_NE(world.notes()[0].find("normalised"), std::string::npos);
+}
+
+TEST(RigidScene, MeshBodyIsCentredOnItsCentreOfMassAndKeepsItsPlace) {
+    TempDir dir;
+    // A unit cube from 0 to 1 on each axis: its centre of mass is (0.5, 0.5, 0.5).
+    const std::string cube = dir.write("cube.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    const WorldDef def = def_of(one_body("\"shape\": \"mesh\", \"mesh\": \"cube.obj\", \"scale\": 2"), dir.file("s.json"));
+    const RigidBody& b = def.rigid_bodies[0];
+    EXPECT_FALSE(b.hull_mass_properties);
+    EXPECT_NEAR(b.volume, 8.0, 1e-9);  // scaled by 2
+    EXPECT_NEAR(b.initial[rigid::X], 1.0, 1e-9);  // the file's centre of mass, scaled
+    EXPECT_NEAR(b.J_body.m[0][0], b.mass * (4.0 + 4.0) / 12.0, 1e-9 * b.mass);  // Table 1, sides of 2
+    // Its hull is about the centre of mass: corners at +-1.
+    for (const Vec3d& v : b.hull->vertices) EXPECT_NEAR(std::abs(v.x), 1.0, 1e-9);
+    // An open mesh (the cube without its top) is taken by its hull, and the world says so.
+    const std::string open = dir.write("open.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    World world(def_of(one_body("\"shape\": \"mesh\", \"mesh\": \"open.obj\""), dir.file("s.json")));
+    EXPECT_TRUE(world.rigid_body(0).hull_mass_properties);
+    EXPECT_NEAR(world.rigid_body(0).volume, 1.0, 1e-9);
+    ASSERT_EQ(world.notes().size(), 1u);
+    EXPECT_NE(world.notes()[0].find("hull"), std::string::npos);
+}
+
+TEST(RigidScene, SceneWithRigidBodiesAndNoMeshHasNoSoftBody) {
+    World world(def_of(one_body("\"shape\": \"box\", \"size\": [1, 1, 1]")));
+    EXPECT_EQ(world.soft_body_count(), 0u);
+    EXPECT_EQ(world.rigid_body_count(), 1u);
+    world.run(10);
+    EXPECT_EQ(world.status(), Status::Ok);
+}
+
+// --- One line naming the body and the key ------------------------------------------------------
+
+TEST(RigidScene, BadBodiesAreRefusedNamingBodyAndKey) {
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"pyramid\"")), "scene.json:1", "'crate'", "'shape'", "pyramid");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\"")), "'crate'", "'size'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\"")), "'crate'", "'radius'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"cylinder\", \"radius\": 1")), "'crate'", "'height'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"mesh\"")), "'crate'", "'mesh'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\", \"size\": [1, 0, 1]")), "'crate'", "'size'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": -1")), "'crate'", "'radius'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"mass\": 0")), "'crate'", "'mass'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"density\": -5")), "'crate'", "'density'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"mass\": 1, \"density\": 2")), "'crate'", "'mass'",
+                          "'density'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"orientation\": [0, 0, 0, 0]")), "'crate'",
+                          "'orientation'", "zero quaternion");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"sphere\", \"radius\": 1, \"orientation\": [1, 0, 0, 0], \"rotation\": [0, 0, 1]")),
+                          "'crate'", "'orientation'", "'rotation'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\", \"size\": [1, 1, 1], \"radius\": 2")), "'crate'", "'radius'", "box");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\", \"size\": [1, 1, 1], \"colour\": 2")), "'crate'", "'colour'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\", \"size\": \"big\"")), "'crate'", "'size'");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"box\", \"size\": [1, 1, 1], \"fixed\": 1")), "'crate'", "'fixed'");
+    EXPECT_REFUSED_NAMING(def_of("{\"rigid_bodies\": [{\"shape\": \"box\", \"size\": [1, 1, 1]}]}"), "scene.json:1", "\"name\"");
+    EXPECT_REFUSED_NAMING(def_of("{\"rigid_bodies\": 3}"), "rigid_bodies", "array");
+}
+
+TEST(RigidScene, FlatAndMissingMeshesAreRefusedNamingTheBody) {
+    TempDir dir;
+    dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"mesh\", \"mesh\": \"quad.obj\""), dir.file("s.json")), "'crate'", "quad.obj",
+                          "flat");
+    EXPECT_REFUSED_NAMING(def_of(one_body("\"shape\": \"mesh\", \"mesh\": \"gone.obj\""), dir.file("s.json")), "'crate'", "gone.obj");
+}
+
+TEST(RigidScene, NamesAreUniqueAcrossEveryBody) {
+    const std::string text =
+        "{\"mesh\": \"a.obj\", \"rigid_bodies\": [{\"name\": \"body\", \"shape\": \"sphere\", \"radius\": 1}]}";
+    EXPECT_REFUSED_NAMING(parse_scene(text, "s.json"), "s.json", "'body'", "unique");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"rigid_bodies\": [{\"name\": \"a\", \"shape\": \"sphere\", \"radius\": 1},"
+                                      " {\"name\": \"a\", \"shape\": \"sphere\", \"radius\": 2}]}", "s.json"),
+                          "'a'", "unique");
+}
+
+TEST(RigidScene, BadSpringsAreRefusedNamingTheSpringAndEnd) {
+    TempDir dir;
+    dir.write("cube.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n");
+    const std::string bodies = "\"rigid_bodies\": [{\"name\": \"plank\", \"shape\": \"box\", \"size\": [2, 0.2, 0.1]}]";
+    const auto with = [&](const std::string& spring) {
+        return def_of("{\"mesh\": \"cube.obj\", " + bodies + ", \"springs\": [" + spring + "]}", dir.file("scene.json"));
+    };
+    const auto world_with = [&](const std::string& spring) { World w(with(spring)); };
+    EXPECT_REFUSED_NAMING(world_with("{\"a\": {\"body\": \"plonk\", \"point\": [0, 0, 0]}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"),
+                          "spring 1", "'a'", "'plonk'");
+    EXPECT_REFUSED_NAMING(world_with("{\"a\": {\"body\": \"body\", \"vertex\": 8}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"),
+                          "spring 1", "'a'", "vertex 8", "8 vertices");
+    EXPECT_REFUSED_NAMING(world_with("{\"a\": {\"body\": \"plank\", \"vertex\": 1}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"),
+                          "spring 1", "'plank'", "point");
+    EXPECT_REFUSED_NAMING(world_with("{\"a\": {\"body\": \"body\", \"point\": [0, 0, 0]}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"),
+                          "spring 1", "'body'", "vertex");
+    EXPECT_REFUSED_NAMING(with("{\"a\": {\"point\": [0, 0, 0]}, \"b\": {\"point\": [0, 0, 1]}}"), "scene.json", "stiffness");
+    EXPECT_REFUSED_NAMING(with("{\"a\": {\"point\": [0, 0, 0]}, \"stiffness\": 1}"), "scene.json", "\"b\"");
+    EXPECT_REFUSED_NAMING(with("{\"a\": {\"point\": [0, 0, 0], \"vertex\": 2}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"),
+                          "'a'", "not both");
+    EXPECT_REFUSED_NAMING(with("{\"a\": {\"point\": [0, 0]}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": 1}"), "'a'", "\"point\"");
+    EXPECT_REFUSED_NAMING(with("{\"a\": {\"point\": [0, 0, 0]}, \"b\": {\"point\": [0, 0, 1]}, \"stiffness\": -1}"), "'stiffness'");
+}
+
+TEST(RigidScene, SpringRestLengthDefaultsToTheEndsDistance) {
+    World world(def_of("{\"gravity\": [0, 0, 0], \"rigid_bodies\": [{\"name\": \"b\", \"shape\": \"sphere\", \"radius\": 0.1,"
+                       " \"position\": [1, 0, 1]}], \"springs\": [{\"a\": {\"point\": [0, 0, 1]}, \"b\": {\"body\": \"b\","
+                       " \"point\": [0.1, 0, 0]}, \"stiffness\": 5}]}"));
+    ASSERT_EQ(world.links().size(), 1u);
+    EXPECT_DOUBLE_EQ(world.links()[0].l0, 1.1);
+    EXPECT_EQ(world.links()[0].c, 0.0);  // damping defaults to 0
+    // At its rest length the spring pulls nothing: the body stays put.
+    world.run(20);
+    EXPECT_LT(length(world.rigid_motion(0).v), 1e-12);
+}
+
+// --- --set NAME.KEY ------------------------------------------------------------------------------
+
+TEST(RigidScene, SetByNameChangesThatBodysKey) {
+    Scene scene = parse_scene("{\"mesh\": \"a.obj\", \"rigid_bodies\": [{\"name\": \"plank\", \"shape\": \"box\", \"size\": [2, 0.3, 0.05]}]}",
+                              "s.json");
+    set_scene_key(scene, "plank.mass", "7");
+    EXPECT_EQ(scene.rigid_bodies[0].mass, 7.0);
+    set_scene_key(scene, "plank.fixed", "true");
+    EXPECT_TRUE(scene.rigid_bodies[0].fixed);
+    set_scene_key(scene, "body.stiffness", "33");
+    EXPECT_EQ(scene.params.stiffness, 33.0f);
+    set_scene_key(scene, "gravity", "0,0,-1");
+    EXPECT_EQ(scene.params.gravity, (Vec3{0.0f, 0.0f, -1.0f}));
+    EXPECT_REFUSED_NAMING(set_scene_key(scene, "plonk.mass", "7"), "'plonk'", "plank");
+    EXPECT_REFUSED_NAMING(set_scene_key(scene, "plank.mass", "-7"), "'plank'", "'mass'");
+    EXPECT_REFUSED_NAMING(set_scene_key(scene, "plank.wobble", "1"), "'plank'", "'wobble'");
+    EXPECT_REFUSED_NAMING(set_scene_key(scene, "body.dt", "0.01"), "'dt'", "world key");
+}
+
+// --- Saving keeps every body ---------------------------------------------------------------------
+
+TEST(RigidScene, SaveAndLoadRoundTripKeepsEveryBodyAndSpring) {
+    TempDir dir;
+    const std::string mesh = dir.write("cube.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    Scene scene = parse_scene(
+        "{\"mesh\": \"cube.obj\", \"stiffness\": 12.5, \"soft_bodies\": [{\"name\": \"jelly\", \"mesh\": \"cube.obj\","
+        " \"init_height\": 3, \"particle_mass\": 0.2}], \"rigid_bodies\": [{\"name\": \"plank\", \"shape\": \"box\","
+        " \"size\": [2, 0.3, 0.05], \"mass\": 5, \"position\": [0, 0, 1], \"rotation\": [10, 20, 30], \"velocity\": [0.1, 0.2, 0.3],"
+        " \"angular_velocity\": [1, 2, 3], \"restitution\": 0.25, \"friction\": 0.125, \"drag_coefficient\": 0.3},"
+        " {\"name\": \"hull\", \"shape\": \"mesh\", \"mesh\": \"cube.obj\", \"scale\": 0.5, \"density\": 700, \"fixed\": true}],"
+        " \"springs\": [{\"a\": {\"body\": \"plank\", \"point\": [1, 0, 0]}, \"b\": {\"body\": \"body\", \"vertex\": 2},"
+        " \"stiffness\": 50, \"damping\": 0.5, \"rest_length\": 0.4}, {\"a\": {\"point\": [0, 0, 3]}, \"b\": {\"body\": \"jelly\","
+        " \"vertex\": 0}, \"stiffness\": 10}]}",
+        dir.file("original.json"));
+    const std::string path = dir.file("saved/scene.json");
+    std::filesystem::create_directories(dir.file("saved"));
+    save_scene(path, scene, Overwrite::No);
+    EXPECT_EQ(load_scene(path), scene);  // the mesh paths resolve to the same files
+    // Stored relative to the saved scene, so a folder of presets can move.
+    EXPECT_NE(read_text(path).find("\"../cube.obj\""), std::string::npos) << read_text(path);
+    // And it simulates.
+    World world(make_world_def(load_scene(path)));
+    EXPECT_EQ(world.soft_body_count(), 2u);
+    EXPECT_EQ(world.rigid_body_count(), 2u);
+    EXPECT_EQ(world.links().size(), 2u);
+}
+
+// A soft body of "soft_bodies" takes only body keys.
+TEST(RigidScene, SoftBodiesTakeBodyKeysOnly) {
+    EXPECT_REFUSED_NAMING(parse_scene("{\"soft_bodies\": [{\"name\": \"j\", \"mesh\": \"a.obj\", \"dt\": 0.01}]}", "s.json"),
+                          "s.json:1", "'j'", "'dt'", "world key");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"soft_bodies\": [{\"name\": \"j\"}]}", "s.json"), "'j'", "\"mesh\"");
+}
+
+}  // namespace
+}  // namespace softbody::test
