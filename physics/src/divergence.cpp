@@ -94,7 +94,8 @@ void World::check_divergence() {
         const double E = kinetic_plus_gravity();
         const double allowed = energy_baseline_ + kEnergyGrowth * energy_scale_ + 1e-9 * std::abs(energy_baseline_);
         if (E > allowed && !stability().stable) {
-            what = "the body's kinetic and gravitational energy reached " + fixed(E, 1) + " J, from a total of " +
+            what = std::string(soft_.size() + rigid_.size() > 1 ? "the bodies'" : "the body's") +
+                   " kinetic and gravitational energy reached " + fixed(E, 1) + " J, from a total of " +
                    fixed(energy_baseline_, 1) + " J with nothing to supply more";
         }
     }

@@ -69,11 +69,10 @@ double growth(Integrator integrator, double h, double lambda_max, double k, doub
 
 }  // namespace
 
-Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps) {
+// One mode x'' = -k lambda x - c lambda x' under the world's integrator and step.
+Stability mode_stability(double lambda, double k, double c, const Params& world, int substeps) {
     Stability s;
-    const double n = static_cast<double>(body.particle_count());
-    const double lambda = n >= 2.0 ? n / double(body.mass) : 0.0;  // lambda_max of M^-1 G, see above
-    const double k = body.params.stiffness, c = body.params.damping, dt = world.dt;
+    const double dt = world.dt;
     s.omega_max = std::sqrt(k * lambda);
     s.gamma_max = c * lambda;
     s.substeps = substeps;
@@ -95,20 +94,52 @@ Stability soft_body_stability(const SoftBody& body, const Params& world, int sub
     return s;
 }
 
-// The world's step must suit its least stable body: the largest growth, and the most substeps
-// needed (where 0, none is enough, outranks every count).
+Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps) {
+    const double n = static_cast<double>(body.particle_count());
+    const double lambda = n >= 2.0 ? n / double(body.mass) : 0.0;  // lambda_max of M^-1 G, see above
+    return mode_stability(lambda, body.params.stiffness, body.params.damping, world, substeps);
+}
+
+// A spring between bodies is one mode: its two ends move apart along the spring against the
+// inverse mass each end offers there, 1/m + (r x d)^T J^-1 (r x d) for a rigid body's point
+// (Eq. 38's denominator: a point off the centre of mass also turns the body), 1/m for a
+// particle, 0 for the world; lambda is their sum.
+double World::link_inverse_mass(const Link& link) const {
+    const Vec3d a = link_end_position(link.a), b = link_end_position(link.b);
+    const Vec3d d = length(b - a) > 0.0 ? normalize(b - a) : Vec3d{0.0, 0.0, 1.0};
+    const auto end = [&](const LinkEnd& e) {
+        switch (e.kind) {
+            case LinkEnd::Kind::World: return 0.0;
+            case LinkEnd::Kind::Soft: return double(soft_[e.body].inv_mass[e.particle]);
+            case LinkEnd::Kind::Rigid: {
+                const RigidMotion m = rigid_motion(e.body);
+                const Vec3d rxd = cross(m.R * e.point, d);
+                return rigid_[e.body].inv_mass + dot(rxd, m.J_inv * rxd);
+            }
+        }
+        return 0.0;
+    };
+    return end(link.a) + end(link.b);
+}
+
+// The world's step must suit its least stable part, a soft body or a spring between bodies:
+// the largest growth, and the most substeps needed (where 0, none is enough, outranks every
+// count).
 Stability World::stability() const {
     Stability worst;
     worst.substeps = substeps_;
     worst.h = params_.dt / substeps_;
     worst.limit = params_.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
     int needed = 1;
-    for (std::size_t b = 0; b < soft_.size(); ++b) {
-        const Stability s = soft_body_stability(soft_[b], params_, substeps_);
-        needed = b == 0 ? s.substeps_needed
-                        : (needed == 0 || s.substeps_needed == 0 ? 0 : std::max(needed, s.substeps_needed));
-        if (b == 0 || s.growth > worst.growth) worst = s;
-    }
+    bool first = true;
+    const auto take = [&](const Stability& s) {
+        needed = first ? s.substeps_needed
+                       : (needed == 0 || s.substeps_needed == 0 ? 0 : std::max(needed, s.substeps_needed));
+        if (first || s.growth > worst.growth) worst = s;
+        first = false;
+    };
+    for (const SoftBody& body : soft_) take(soft_body_stability(body, params_, substeps_));
+    for (const Link& link : links_) take(mode_stability(link_inverse_mass(link), link.k, link.c, params_, substeps_));
     worst.substeps_needed = needed;
     return worst;
 }

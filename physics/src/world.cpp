@@ -64,6 +64,7 @@ World::World(WorldDef def, WorldOptions options) : params_(def.params), referenc
     link_force_on_particles_.assign(soft_.size(), {});
     build();
     resolve_links(def.springs);
+    update_substeps();  // the links' springs count toward the step's stability
 }
 
 World::World(const Params& params, Mesh mesh, WorldOptions options) : World(one_body(params, std::move(mesh)), options) {}

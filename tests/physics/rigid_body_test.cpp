@@ -304,6 +304,64 @@ TEST(Links, SpringAtAPointTurnsTheBodyWithTauOverJ) {
     EXPECT_NEAR(m.v.z, h * 10.0, 1e-15);  // and the centre of mass goes up with F / m
 }
 
+// A stiff spring between bodies is a mode like the soft body's fastest: its ends oscillate at
+// omega^2 = k (1/m_a_eff + 1/m_b_eff), and the explicit step is stable only while h omega < 2.
+// The stability estimate counts it, so auto_substeps covers it, and past it the world stops
+// with the message that says what to change (exit 3).
+TEST(Links, StiffSpringCountsInTheStabilityEstimateAndDivergesWithTheMessage) {
+    // A 0.1 kg ball on a spring to a world point through its centre of mass (no turning),
+    // stretched 0.1 m past its 0.5 m: omega^2 = k / m = 1e4 / 0.1, h omega = 0.02 x 316 = 6.3,
+    // far past 2.
+    const auto with = [&](const std::string& keys) {
+        return world_of("{\"gravity\": [0, 0, 0], \"ground\": false, " + keys +
+                        " \"rigid_bodies\": [{\"name\": \"b\", \"shape\": \"sphere\", \"radius\": 0.05, \"mass\": 0.1,"
+                        " \"position\": [0.6, 0, 0]}], \"springs\": [{\"a\": {\"point\": [0, 0, 0]}, \"b\": {\"body\": \"b\"},"
+                        " \"stiffness\": 10000, \"rest_length\": 0.5}]}");
+    };
+    World fixed_step = with("");
+    const Stability s = fixed_step.stability();
+    EXPECT_NEAR(s.omega_max, std::sqrt(1e4 / 0.1), 1e-9);
+    EXPECT_FALSE(s.stable);
+    // h omega < 2 with a 12% margin on omega: 316 x 0.02 / n < 2 / 1.118 gives n >= 4.
+    EXPECT_EQ(s.substeps_needed, 4);
+    fixed_step.run(200);
+    EXPECT_EQ(fixed_step.status(), Status::Diverged);
+    EXPECT_NE(fixed_step.divergence().find("substeps to at least 4"), std::string::npos) << fixed_step.divergence();
+    // With the substeps it asks for, it oscillates for ever without growing. Symplectic Euler
+    // keeps x^2 - h x v + v^2 / omega^2 exactly for a linear spring, an ellipse whose reach in x
+    // is A / sqrt(1 - (h omega / 2)^2): 0.1 m becomes 0.163 m at h omega = 1.58. To 1e-3 m:
+    // the ticks sample the ellipse near, not at, its ends.
+    World automatic = with("\"auto_substeps\": true,");
+    EXPECT_EQ(automatic.substeps_in_use(), 4);
+    const double h_omega = 0.02f / 4.0 * std::sqrt(1e4 / 0.1);
+    const double reach = 0.1 / std::sqrt(1.0 - h_omega * h_omega / 4.0);
+    double lowest = 1.0, highest = 0.0;
+    for (int t = 0; t < 500; ++t) {
+        automatic.tick();
+        lowest = std::min(lowest, automatic.rigid_motion(0).x.x);
+        highest = std::max(highest, automatic.rigid_motion(0).x.x);
+    }
+    EXPECT_EQ(automatic.status(), Status::Ok);
+    EXPECT_NEAR(lowest, 0.5 - reach, 1e-3);
+    EXPECT_NEAR(highest, 0.5 + reach, 1e-3);
+}
+
+// A fixed body is scenery: gravity, springs and contacts leave it where it is.
+TEST(Links, FixedBodyNeverMoves) {
+    World world = world_of(
+        "{\"rigid_bodies\": [{\"name\": \"post\", \"shape\": \"box\", \"size\": [0.2, 0.2, 2], \"position\": [0, 0, 3],"
+        " \"fixed\": true, \"velocity\": [1, 0, 0], \"angular_velocity\": [0, 1, 0]},"
+        " {\"name\": \"weight\", \"shape\": \"sphere\", \"radius\": 0.1, \"position\": [1, 0, 4]}],"
+        " \"springs\": [{\"a\": {\"body\": \"post\", \"point\": [0, 0, 1]}, \"b\": {\"body\": \"weight\"}, \"stiffness\": 50}]}");
+    world.run(200);
+    const RigidMotion m = world.rigid_motion(0);
+    EXPECT_EQ(m.x, (Vec3d{0, 0, 3}));
+    EXPECT_EQ(m.q, Quat{});
+    EXPECT_EQ(m.P, Vec3d{});
+    EXPECT_EQ(m.L, Vec3d{});
+    EXPECT_GT(length(world.rigid_motion(1).v), 0.1);  // the weight swings
+}
+
 // --- Determinism -----------------------------------------------------------------------------
 
 // A mixed scene (a soft body of more than two kernel blocks, rigid bodies on the ground, a

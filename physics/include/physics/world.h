@@ -178,6 +178,7 @@ private:
     void step(float h);
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
+    double link_inverse_mass(const Link& link) const;
     void solve_rigid_contacts(float h);
     void check_divergence();
     void take_energy_baseline();
