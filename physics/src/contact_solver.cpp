@@ -95,8 +95,8 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
         Row& row = rows[i];
         row.a = side_of(bodies, c.a);
         row.b = side_of(bodies, c.b);
-        row.r_a = c.point - row.a.x();
-        row.r_b = c.b < 0 ? Vec3d{} : c.point - row.b.x();
+        row.r_a = c.arm_a;
+        row.r_b = c.b < 0 ? Vec3d{} : c.arm_b;
         tangents(c.normal, row.t1, row.t2);
         row.k_n = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, c.normal);
         row.k_t1 = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, row.t1);

@@ -113,38 +113,51 @@ void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n) {
     points = std::move(kept);
 }
 
-void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* state, const double* start,
-                           const Params& world, std::vector<RigidContact>& out) {
+double speculative_margin(const RigidBody& body, const RigidMotion& start, double h, double g) {
+    return h * (length(start.v) + length(start.omega) * body.bounding_radius) + h * h * g + 1e-3;
+}
+
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const double* state,
+                           const Params& world, double h, std::vector<RigidContact>& out) {
     if (!world.ground || body.fixed) return;
-    const RigidMotion m = rigid_motion(body, state);
     const RigidMotion m0 = rigid_motion(body, start);
+    const RigidMotion m = rigid_motion(body, state);
     const Vec3d n{0.0, 0.0, 1.0};
     const double ground = world.ground_height;
+    const double margin = speculative_margin(body, m0, h, length(Vec3d(world.gravity)));
     RigidContact c;
     c.a = index;
     c.b = -1;
     c.normal = n;
     c.restitution = body.restitution.value_or(world.restitution);
     c.friction = body.friction.value_or(world.dynamic_friction);
-    const auto add = [&](const Vec3d& local, std::uint32_t feature, std::vector<RigidContact>& into) {
-        const Vec3d p = m.x + m.R * local;
-        if (p.z > ground + kRigidMargin) return;
+    // `local`: the point in body axes, as the step began; `anchor`: the same material point for
+    // the position pass, where the step took it.
+    const auto add = [&](const Vec3d& local, const Vec3d& anchor, std::uint32_t feature, std::vector<RigidContact>& into) {
+        const Vec3d p0 = m0.x + m0.R * local;
+        if (p0.z - ground > margin) return;
+        const Vec3d p = m.x + m.R * anchor;
         c.feature = feature;
-        c.point = p;
+        c.point = p0;
+        c.arm_a = p0 - m0.x;
+        c.separation = p0.z - ground;
         c.depth = ground - p.z;
-        c.separation = (m0.x + m0.R * local).z - ground;
-        c.local_a = local;
+        c.local_a = anchor;
         c.local_b = {p.x, p.y, ground};
         into.push_back(c);
     };
     if (body.shape == ShapeKind::Sphere) {
-        // The lowest point of the sphere, in body axes: R^T (-r n).
-        add(m.R.transposed() * (n * -body.radius), 0, out);
+        // Its lowest point, R^T (-r n) in body axes: as the step began, and where it took it.
+        add(m0.R.transposed() * (n * -body.radius), m.R.transposed() * (n * -body.radius), 0, out);
         return;
     }
     std::vector<RigidContact> manifold;
-    for (std::size_t v = 0; v < body.hull->vertices.size(); ++v) add(body.hull->vertices[v], std::uint32_t(v), manifold);
+    for (std::size_t v = 0; v < body.hull->vertices.size(); ++v) {
+        add(body.hull->vertices[v], body.hull->vertices[v], std::uint32_t(v), manifold);
+    }
+    for (RigidContact& point : manifold) point.depth = -point.separation;  // for the choice of the deepest
     reduce_manifold(manifold, n);
+    for (RigidContact& point : manifold) point.depth = ground - (m.x + m.R * point.local_a).z;
     out.insert(out.end(), manifold.begin(), manifold.end());
 }
 

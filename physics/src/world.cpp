@@ -315,11 +315,9 @@ void World::step(float h) {
                 if (params_.integrator == Integrator::Verlet) verlet_update(body, h);
                 else symplectic_euler_update(body, h);
             }
-            if (!rigid_.empty()) {
-                // Momenta first, then positions from the new momenta (Verlet is this for a rigid body).
-                flat_euler_momenta(y_, k_[0], hd);
-                symplectic_positions(rigid_, y_step_start_, y_, hd);
-            }
+            // Rigid bodies: the momenta now; the positions follow from them once the contacts
+            // have had their say (solve_rigid_contacts). Verlet is this for a rigid body.
+            if (!rigid_.empty()) flat_euler_momenta(y_, k_[0], hd);
             break;
         case Integrator::ExplicitEuler:
             evaluate_forces(0, true);
@@ -346,32 +344,42 @@ void World::step(float h) {
     if (!rigid_.empty()) solve_rigid_contacts(h);
 }
 
-// Eq. 37 and 38 at every contact of the step, with the ground a static body. The contacts are
-// found where the integrator took the bodies (their predicted positions), the impulses change
-// the momenta, and then, for symplectic Euler and Verlet, whose positions follow from the new
-// momenta, the positions are advanced again from the step's start with them (Box2D's order:
-// velocities, then positions): a body resting on the ground does not sink into it each step
-// only to be pushed back out. What penetration is left, the solver's position pass removes.
+// Eq. 37 and 38 at every contact of the step, with the ground a static body. Contacts are
+// found where the bodies were when the step began, each point within how far its body can
+// move in the step (a speculative contact), as Box2D finds them. For symplectic Euler and
+// Verlet the impulses then act on the new momenta before the positions follow from them
+// (velocities, then positions, as Box2D orders it): a resting body does not sink a step's fall
+// into the ground each tick, and a contact still apart closes its gap this step and no more, so
+// fast bodies do not pass through thin ones. Explicit Euler and RK4 have moved the bodies with
+// the old velocities already: only the points that end the step in contact take impulses,
+// which stop their approach. What penetration is left, the solver's position pass removes.
 void World::solve_rigid_contacts(float h) {
     std::swap(previous_contacts_, contacts_);
     contacts_.clear();
+    const bool speculative = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         const std::size_t at = b * rigid::kStateSize;
-        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[at], &y_step_start_[at], params_, contacts_);
+        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_step_start_[at], &y_[at], params_, h, contacts_);
     }
+    if (!speculative) std::erase_if(contacts_, [](const RigidContact& c) { return c.depth < 0.0; });
     std::vector<SolverBody> bodies(rigid_.size());
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         bodies[b] = {&y_[b * rigid::kStateSize], rigid_[b].inv_mass, rigid_[b].J_body_inv};
     }
     SolverSettings settings;
     settings.h = h;
-    settings.speculative = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
+    settings.speculative = speculative;
     // As for particles: impacts slower than two steps of gravity are resting contact.
     settings.bounce_speed = 2.0 * std::abs(double(params_.gravity.z)) * double(h);
     solve_contact_velocities(contacts_, previous_contacts_, bodies, settings);
-    if (settings.speculative && !contacts_.empty()) {
+    if (speculative) {
         symplectic_positions(rigid_, y_step_start_, y_, h);
         apply_bounce_shifts(contacts_, bodies);
+        // Where the positions took each contact's points: the position pass starts from there.
+        for (RigidContact& c : contacts_) {
+            const RigidMotion m = rigid_motion(c.a);
+            c.depth = -dot(m.x + m.R * c.local_a - c.local_b, c.normal);
+        }
     }
     solve_contact_positions(contacts_, bodies, settings);
 }

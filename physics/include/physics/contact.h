@@ -13,7 +13,8 @@ struct RigidContact {
     std::uint32_t a = 0;         // the rigid body the normal points toward
     std::int32_t b = -1;         // the other rigid body, or -1 for the ground (static: 1/m = 0, J^-1 = 0)
     std::uint32_t feature = 0;   // which vertex or edge made it, to carry its impulses to the next step
-    Vec3d point;                 // world, m
+    Vec3d point;                 // world, m, where the step began
+    Vec3d arm_a, arm_b;          // from each body's centre of mass to the point, world axes (the r of Eq. 38)
     Vec3d normal;                // unit, out of b toward a
     double depth = 0.0;          // penetration along the normal where the step took the bodies, m (> 0: overlapping)
     double separation = 0.0;     // the same points' gap along the normal at the step's start, m (< 0: overlapping)
