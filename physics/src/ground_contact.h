@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "forces.h"
+#include "manifold.h"
 #include "physics/contact.h"
 #include "physics/params.h"
 #include "physics/rigid_body.h"
@@ -33,10 +34,5 @@ void resolve_ground_contacts(SoftBody& body, const Params& world, float h);
 // `state`: where the step took the body; `start`: where it was when the step began.
 void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* state, const double* start,
                            const Params& world, std::vector<RigidContact>& out);
-
-// Keeps at most four of a manifold's points on a plane of normal n: the deepest, the one
-// farthest from it, the one that spans the largest triangle with those two, and the one that
-// adds the most area outside that triangle. Four points hold a face steady; more only cost.
-void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n);
 
 }  // namespace softbody
