@@ -265,24 +265,6 @@ TEST(CollideSpheres, OnEachFaceEdgeAndCornerOfABox) {
     EXPECT_EQ(std::adjacent_find(features.begin(), features.end()), features.end());
 }
 
-// An id names the feature, not the way to it: a ball touching one corner (or one edge) from
-// different directions within its reach gets the same id each time, though different faces of
-// the hull see it first.
-TEST(CollideSpheres, IdsNameTheFeatureNotTheApproach) {
-    const CollisionShape cube = box({1, 1, 1}), b = ball(0.25);
-    const Vec3d corner{0.5, 0.5, 0.5}, edge{0.1, 0.5, 0.5};
-    const auto id = [&](const Vec3d& feature, const Vec3d& direction) {
-        const auto cs = contacts(b, at(feature + normalize(direction) * 0.24), cube, at({}));
-        EXPECT_EQ(cs.size(), 1u);
-        return cs.empty() ? 0u : cs[0].feature;
-    };
-    for (const Vec3d& d : {Vec3d{1, 2, 3}, Vec3d{3, 1, 2}, Vec3d{2, 3, 1}, Vec3d{1, 1, 5}, Vec3d{5, 1, 1}}) {
-        EXPECT_EQ(id(corner, d), id(corner, {1, 1, 1}));
-    }
-    for (const Vec3d& d : {Vec3d{0, 1, 3}, Vec3d{0, 3, 1}}) EXPECT_EQ(id(edge, d), id(edge, {0, 1, 1}));
-    EXPECT_NE(id(corner, {1, 1, 1}), id(edge, {0, 1, 1}));
-}
-
 // A ball of radius 0.3 whose centre is inside a 2 m cube, 0.3 below its top face (the nearest):
 // out through the top, depth r + 0.3, the point midway between the top face (z = 1) and the
 // ball's far side (z = 0.4).
