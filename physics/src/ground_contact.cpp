@@ -82,37 +82,6 @@ void resolve_ground_contacts(SoftBody& body, const Params& world, float h) {
     }
 }
 
-void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n) {
-    if (points.size() <= 4) return;
-    const auto area = [&](const Vec3d& a, const Vec3d& b, const Vec3d& c) { return dot(cross(b - a, c - a), n); };
-    std::vector<RigidContact> kept;
-    const auto take = [&](auto score) {
-        std::size_t best = 0;
-        double best_score = -1e300;
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const double value = score(points[i]);
-            if (value > best_score) {
-                best = i;
-                best_score = value;
-            }
-        }
-        kept.push_back(points[best]);
-        points.erase(points.begin() + static_cast<std::ptrdiff_t>(best));
-    };
-    take([](const RigidContact& c) { return c.depth; });
-    const Vec3d p0 = kept[0].point;
-    take([&](const RigidContact& c) { return length(c.point - p0); });
-    const Vec3d p1 = kept[1].point;
-    take([&](const RigidContact& c) { return std::abs(area(p0, p1, c.point)); });
-    Vec3d p2 = kept[2].point;
-    Vec3d a = p0, b = p1;
-    if (area(a, b, p2) < 0.0) std::swap(a, b);  // a, b, p2 counter-clockwise about n
-    take([&](const RigidContact& c) {
-        return std::max({-area(a, b, c.point), -area(b, p2, c.point), -area(p2, a, c.point)});
-    });
-    points = std::move(kept);
-}
-
 double speculative_margin(const RigidBody& body, const RigidMotion& start, double h, double g) {
     return h * (length(start.v) + length(start.omega) * body.bounding_radius) + h * h * g + 1e-3;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "forces.h"
+#include "manifold.h"
 #include "physics/contact.h"
 #include "physics/params.h"
 #include "physics/rigid_body.h"
@@ -40,10 +41,5 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
 // `start`: the body's state when the step began; `state`: where the step took it.
 void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const double* state,
                            const Params& world, double h, std::vector<RigidContact>& out);
-
-// Keeps at most four of a manifold's points on a plane of normal n: the deepest, the one
-// farthest from it, the one that spans the largest triangle with those two, and the one that
-// adds the most area outside that triangle. Four points hold a face steady; more only cost.
-void reduce_manifold(std::vector<RigidContact>& points, const Vec3d& n);
 
 }  // namespace softbody

@@ -1,0 +1,45 @@
+// The broad phase: which pairs of bodies are near enough to be worth the narrow phase
+// (collide.h). Each body is boxed by its world axis-aligned bounding box, fattened by a margin;
+// the boxes are sorted along one axis and swept (sort and sweep), so only boxes that overlap on
+// that axis are compared on the other two.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "physics/collide.h"
+#include "physics/vec3.h"
+
+namespace softbody {
+
+struct Aabb {
+    Vec3d lo, hi;
+    // Boxes that touch overlap (closed intervals on each axis).
+    bool overlaps(const Aabb& o) const {
+        return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
+    }
+};
+
+// The shape's box at the pose, grown by `margin` on every side: a hull's from its vertices
+// under the pose (exact), a sphere's from its radius.
+Aabb world_aabb(const CollisionShape& shape, const Pose& pose, double margin);
+
+// Two bodies by their indices, a < b.
+struct BodyPair {
+    std::uint32_t a = 0, b = 0;
+    bool operator==(const BodyPair&) const = default;
+    auto operator<=>(const BodyPair&) const = default;
+};
+
+// Every pair of overlapping boxes, written into `out` (cleared first), in increasing order of
+// (a, b): the same pairs in the same order on every run and machine, whatever the sort did.
+// The sweep runs along the axis on which the boxes' centres spread most (a pile is tall, a row
+// is long), so a stack of hundreds sharing one x range is still swept cheaply. A huge box (a
+// fixed ramp, the floor) costs one pass over the boxes that start within it. A box with a
+// coordinate that is not a number overlaps nothing.
+// Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes overlapping one on the
+// sweep axis.
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+
+}  // namespace softbody

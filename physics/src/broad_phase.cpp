@@ -1,0 +1,93 @@
+// The broad phase: boxes, and sort and sweep (broad_phase.h).
+#include "physics/broad_phase.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "collide_internal.h"
+
+namespace softbody {
+
+Aabb world_aabb(const CollisionShape& shape, const Pose& pose, double margin) {
+    Aabb box;
+    if (shape.is_sphere()) {
+        const Vec3d r{shape.radius + margin, shape.radius + margin, shape.radius + margin};
+        return {pose.x - r, pose.x + r};
+    }
+    const Transform T = world_transform(pose);
+    box.lo = box.hi = T.apply(shape.hull->vertices.front());
+    for (const Vec3d& v : shape.hull->vertices) {
+        const Vec3d p = T.apply(v);
+        for (int k = 0; k < 3; ++k) {
+            box.lo[k] = std::min(box.lo[k], p[k]);
+            box.hi[k] = std::max(box.hi[k], p[k]);
+        }
+    }
+    const Vec3d m{margin, margin, margin};
+    return {box.lo - m, box.hi + m};
+}
+
+namespace {
+
+bool finite(const Aabb& b) { return is_finite(b.lo) && is_finite(b.hi); }
+
+// The axis along which the boxes' centres spread most (largest variance).
+int sweep_axis(std::span<const Aabb> boxes) {
+    Vec3d sum, sum2;
+    double n = 0.0;
+    for (const Aabb& b : boxes) {
+        if (!finite(b)) continue;
+        const Vec3d c = (b.lo + b.hi) * 0.5;
+        sum += c;
+        for (int k = 0; k < 3; ++k) sum2[k] += c[k] * c[k];
+        n += 1.0;
+    }
+    if (n == 0.0) return 0;
+    int axis = 0;
+    double widest = -1.0;
+    for (int k = 0; k < 3; ++k) {
+        const double variance = sum2[k] / n - (sum[k] / n) * (sum[k] / n);
+        if (variance > widest) {
+            widest = variance;
+            axis = k;
+        }
+    }
+    return axis;
+}
+
+}  // namespace
+
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
+    out.clear();
+    const int axis = sweep_axis(boxes);
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    // Each finite box's interval on the sweep axis and its extent on the other two, side by
+    // side in memory, in order of its start on the axis (only finite boxes: a comparison with a
+    // NaN is no order).
+    struct Entry {
+        double lo, hi, lo_u, hi_u, lo_v, hi_v;
+        std::uint32_t index;
+    };
+    std::vector<Entry> sweep;
+    sweep.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const Aabb& b = boxes[i];
+        if (finite(b)) sweep.push_back({b.lo[axis], b.hi[axis], b.lo[u], b.hi[u], b.lo[v], b.hi[v], std::uint32_t(i)});
+    }
+    std::sort(sweep.begin(), sweep.end(), [](const Entry& a, const Entry& b) { return a.lo < b.lo; });
+    // Each box meets the ones that start after it and before it ends. Boxes that start together
+    // may come in either order (either way finds their pair), and the pairs are sorted at the
+    // end, so nothing depends on how the sort breaks ties.
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+        const Entry& a = sweep[i];
+        for (std::size_t j = i + 1; j < sweep.size() && sweep[j].lo <= a.hi; ++j) {
+            const Entry& b = sweep[j];
+            if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v) {
+                out.push_back({std::min(a.index, b.index), std::max(a.index, b.index)});
+            }
+        }
+    }
+    std::sort(out.begin(), out.end());
+}
+
+}  // namespace softbody
