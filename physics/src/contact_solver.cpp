@@ -63,6 +63,17 @@ struct Row {
 using Key = std::tuple<std::uint32_t, std::int32_t, std::uint32_t>;
 Key key_of(const RigidContact& c) { return {c.a, c.b, c.feature}; }
 
+// Where each manifold starts: the contacts of one pair of bodies lie next to each other (the
+// ground's of one body too); the last entry is the end.
+std::vector<std::size_t> manifolds(const std::vector<RigidContact>& contacts) {
+    std::vector<std::size_t> start{0};
+    for (std::size_t i = 1; i < contacts.size(); ++i) {
+        if (contacts[i].a != contacts[i - 1].a || contacts[i].b != contacts[i - 1].b) start.push_back(i);
+    }
+    start.push_back(contacts.size());
+    return start;
+}
+
 // Rotates q by the small turn theta (world axes), keeping |q| as it is.
 void turn(double* s, const Vec3d& theta) {
     const double angle = length(theta);
@@ -129,35 +140,46 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
         }
     }
 
+    const std::vector<std::size_t> group_start = manifolds(contacts);
+
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
-        for (std::size_t i = 0; i < contacts.size(); ++i) {
-            RigidContact& c = contacts[i];
-            Row& row = rows[i];
-            // Coulomb friction in impulse form: |lambda_t| <= mu lambda_n, the tangential
-            // relative velocity brought to zero while that allows.
-            if (c.friction > 0.0) {
-                const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-                double t[2] = {c.tangent_impulse[0] - dot(v_rel, row.t1) / row.k_t1,
-                               c.tangent_impulse[1] - dot(v_rel, row.t2) / row.k_t2};
-                const double limit = c.friction * c.normal_impulse, size = std::hypot(t[0], t[1]);
-                if (size > limit) {
-                    const double s = size > 0.0 ? limit / size : 0.0;
-                    t[0] *= s;
-                    t[1] *= s;
+        for (std::size_t g = 0; g + 1 < group_start.size(); ++g) {
+            const std::size_t first = group_start[g], end = group_start[g + 1];
+            // The points of a manifold act on the same two bodies, and each changes what the
+            // others need: a few passes over the manifold before moving on solve it nearly as a
+            // whole, so that a face lands and rests on all its corners alike (one pass favours
+            // the corner it visits first, and a stack of boxes leans and creeps).
+            for (int pass = 0; pass < (end - first > 1 ? settings.manifold_passes : 1); ++pass) {
+                for (std::size_t i = first; i < end; ++i) {
+                    RigidContact& c = contacts[i];
+                    Row& row = rows[i];
+                    // Coulomb friction in impulse form: |lambda_t| <= mu lambda_n, the tangential
+                    // relative velocity brought to zero while that allows.
+                    if (c.friction > 0.0) {
+                        const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
+                        double t[2] = {c.tangent_impulse[0] - dot(v_rel, row.t1) / row.k_t1,
+                                       c.tangent_impulse[1] - dot(v_rel, row.t2) / row.k_t2};
+                        const double limit = c.friction * c.normal_impulse, size = std::hypot(t[0], t[1]);
+                        if (size > limit) {
+                            const double s = size > 0.0 ? limit / size : 0.0;
+                            t[0] *= s;
+                            t[1] *= s;
+                        }
+                        const Vec3d j = row.t1 * (t[0] - c.tangent_impulse[0]) + row.t2 * (t[1] - c.tangent_impulse[1]);
+                        c.tangent_impulse[0] = t[0];
+                        c.tangent_impulse[1] = t[1];
+                        row.a.apply(j, row.r_a);
+                        row.b.apply(-j, row.r_b);
+                    }
+                    // Eq. 38: lambda = (target - v_n) / (1/m_a + 1/m_b + rotational terms), the total kept >= 0.
+                    const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
+                    const double lambda = std::max(c.normal_impulse + (row.target - dot(v_rel, c.normal)) / row.k_n, 0.0);
+                    const Vec3d j = c.normal * (lambda - c.normal_impulse);
+                    c.normal_impulse = lambda;
+                    row.a.apply(j, row.r_a);
+                    row.b.apply(-j, row.r_b);
                 }
-                const Vec3d j = row.t1 * (t[0] - c.tangent_impulse[0]) + row.t2 * (t[1] - c.tangent_impulse[1]);
-                c.tangent_impulse[0] = t[0];
-                c.tangent_impulse[1] = t[1];
-                row.a.apply(j, row.r_a);
-                row.b.apply(-j, row.r_b);
             }
-            // Eq. 38: lambda = (target - v_n) / (1/m_a + 1/m_b + rotational terms), the total kept >= 0.
-            const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-            const double lambda = std::max(c.normal_impulse + (row.target - dot(v_rel, c.normal)) / row.k_n, 0.0);
-            const Vec3d j = c.normal * (lambda - c.normal_impulse);
-            c.normal_impulse = lambda;
-            row.a.apply(j, row.r_a);
-            row.b.apply(-j, row.r_b);
         }
     }
 
@@ -240,33 +262,43 @@ void apply_bounce_shifts(const std::vector<RigidContact>& contacts, std::span<co
 void solve_contact_positions(std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies,
                              const SolverSettings& settings) {
     if (contacts.empty()) return;
+    const std::vector<std::size_t> group_start = manifolds(contacts);
     std::vector<Vec3d> turns(bodies.size());
     for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
         std::fill(turns.begin(), turns.end(), Vec3d{});
-        for (RigidContact& c : contacts) {
-            const Side a = side_of(bodies, c.a), b = side_of(bodies, c.b);
-            // Anchors where the body is now: R r turned further by this pass's turn so far.
-            const auto anchor = [&](const Side& side, std::int64_t index, const Vec3d& local) {
-                const Quat q{side.s[rigid::Q], side.s[rigid::Q + 1], side.s[rigid::Q + 2], side.s[rigid::Q + 3]};
-                const Vec3d r = q.to_matrix() * local;
-                return side.x() + r + cross(turns[std::size_t(index)], r);
-            };
-            const Vec3d p_a = anchor(a, c.a, c.local_a);
-            const Vec3d p_b = b.s ? anchor(b, c.b, c.local_b) : c.local_b;  // the ground: a point on its plane
-            const double separation = dot(p_a - p_b, c.normal);
-            const double C = std::clamp(settings.position_rate * (separation + settings.slop), -settings.max_correction, 0.0);
-            if (C >= 0.0) continue;
-            const Vec3d r_a = p_a - a.x(), r_b = b.s ? p_b - b.x() : Vec3d{};
-            const double k = effective_inverse_mass(a.inv_mass, a.J_inv, r_a, b.inv_mass, b.J_inv, r_b, c.normal);
-            if (!(k > 0.0)) continue;
-            const Vec3d j = c.normal * (-C / k);
-            if (a.s && a.inv_mass > 0.0) {
-                for (int n = 0; n < 3; ++n) a.s[rigid::X + n] += j[n] * a.inv_mass;
-                turns[c.a] += a.J_inv * cross(r_a, j);
-            }
-            if (b.s && b.inv_mass > 0.0) {
-                for (int n = 0; n < 3; ++n) b.s[rigid::X + n] -= j[n] * b.inv_mass;
-                turns[std::size_t(c.b)] += b.J_inv * cross(r_b, -j);
+        for (std::size_t g = 0; g + 1 < group_start.size(); ++g) {
+            const std::size_t first = group_start[g], end = group_start[g + 1];
+            // Several passes over a manifold, as for the impulses: one pass lifts the corner it
+            // visits first the most, and a stack leans.
+            for (int pass = 0; pass < (end - first > 1 ? settings.manifold_passes : 1); ++pass) {
+                for (std::size_t i = first; i < end; ++i) {
+                    RigidContact& c = contacts[i];
+                    const Side a = side_of(bodies, c.a), b = side_of(bodies, c.b);
+                    // Anchors where the body is now: R r turned further by this pass's turn so far.
+                    const auto anchor = [&](const Side& side, std::int64_t index, const Vec3d& local) {
+                        const Quat q{side.s[rigid::Q], side.s[rigid::Q + 1], side.s[rigid::Q + 2], side.s[rigid::Q + 3]};
+                        const Vec3d r = q.to_matrix() * local;
+                        return side.x() + r + cross(turns[std::size_t(index)], r);
+                    };
+                    const Vec3d p_a = anchor(a, c.a, c.local_a);
+                    const Vec3d p_b = b.s ? anchor(b, c.b, c.local_b) : c.local_b;  // the ground: a point on its plane
+                    const double separation = dot(p_a - p_b, c.normal);
+                    const double C =
+                        std::clamp(settings.position_rate * (separation + settings.slop), -settings.max_correction, 0.0);
+                    if (C >= 0.0) continue;
+                    const Vec3d r_a = p_a - a.x(), r_b = b.s ? p_b - b.x() : Vec3d{};
+                    const double k = effective_inverse_mass(a.inv_mass, a.J_inv, r_a, b.inv_mass, b.J_inv, r_b, c.normal);
+                    if (!(k > 0.0)) continue;
+                    const Vec3d j = c.normal * (-C / k);
+                    if (a.s && a.inv_mass > 0.0) {
+                        for (int n = 0; n < 3; ++n) a.s[rigid::X + n] += j[n] * a.inv_mass;
+                        turns[c.a] += a.J_inv * cross(r_a, j);
+                    }
+                    if (b.s && b.inv_mass > 0.0) {
+                        for (int n = 0; n < 3; ++n) b.s[rigid::X + n] -= j[n] * b.inv_mass;
+                        turns[std::size_t(c.b)] += b.J_inv * cross(r_b, -j);
+                    }
+                }
             }
         }
         for (std::size_t i = 0; i < bodies.size(); ++i) {

@@ -40,7 +40,8 @@ struct SolverSettings {
     bool speculative = false;       // the positions will follow the new velocities (symplectic
                                     // Euler): a contact apart at the start may close its gap
     double bounce_speed = 0.0;      // slower impacts are resting contact: they bounce with e = 0, m/s
-    int velocity_iterations = 10;
+    int velocity_iterations = 20;
+    int manifold_passes = 8;        // normal-impulse passes over one manifold within each iteration
     int restitution_iterations = 10;
     int position_iterations = 5;
     double slop = 2e-4;             // m of penetration left alone: contact persists, nothing jitters

@@ -11,6 +11,7 @@
 #include "ground_contact.h"
 #include "integrators.h"
 #include "message_text.h"
+#include "rigid_contacts.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -41,7 +42,8 @@ WorldDef one_body(const Params& params, Mesh mesh) {
 
 }  // namespace
 
-World::World(WorldDef def, WorldOptions options) : params_(def.params), reference_kernel_(options.reference_kernel) {
+World::World(WorldDef def, WorldOptions options)
+    : params_(def.params), rigid_contact_scratch_(std::make_unique<RigidContactScratch>()), reference_kernel_(options.reference_kernel) {
     validate(params_);
     pool_ = std::make_unique<ThreadPool>(std::max(1, options.threads));
     for (SoftBodyDef& d : def.soft_bodies) {
@@ -56,7 +58,10 @@ World::World(WorldDef def, WorldOptions options) : params_(def.params), referenc
         soft_.push_back(std::move(body));
     }
     rigid_ = std::move(def.rigid_bodies);
-    for (const RigidBody& body : rigid_) notes_.insert(notes_.end(), body.notes.begin(), body.notes.end());
+    for (const RigidBody& body : rigid_) {
+        notes_.insert(notes_.end(), body.notes.begin(), body.notes.end());
+        shapes_.push_back(collision_shape(body));
+    }
     const std::size_t n = rigid_.size() * rigid::kStateSize;
     for (auto* y : {&y_, &y_tick_prev_, &y_good_, &y_stage_, &k_[0], &k_[1], &k_[2], &k_[3]}) y->assign(n, 0.0);
     link_force_on_rigid_.assign(rigid_.size(), {});
@@ -361,6 +366,9 @@ void World::solve_rigid_contacts(float h) {
         const std::size_t at = b * rigid::kStateSize;
         rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_step_start_[at], &y_[at], params_, h, contacts_);
     }
+    rigid_body_contacts(rigid_, shapes_, y_step_start_, params_, h, *rigid_contact_scratch_, contacts_);
+    // Where the step took each contact's two points (the ground's: fixed).
+    for (RigidContact& c : contacts_) c.depth = -contact_separation(c, rigid_, y_);
     if (!speculative) std::erase_if(contacts_, [](const RigidContact& c) { return c.depth < 0.0; });
     std::vector<SolverBody> bodies(rigid_.size());
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
@@ -376,10 +384,7 @@ void World::solve_rigid_contacts(float h) {
         symplectic_positions(rigid_, y_step_start_, y_, h);
         apply_bounce_shifts(contacts_, bodies);
         // Where the positions took each contact's points: the position pass starts from there.
-        for (RigidContact& c : contacts_) {
-            const RigidMotion m = rigid_motion(c.a);
-            c.depth = -dot(m.x + m.R * c.local_a - c.local_b, c.normal);
-        }
+        for (RigidContact& c : contacts_) c.depth = -contact_separation(c, rigid_, y_);
     }
     solve_contact_positions(contacts_, bodies, settings);
 }

@@ -269,11 +269,11 @@ TEST(Ground, BoxLandingFlatDoesNotTurn) {
 TEST(Links, OffCentreSpringConservesMomentumAndSpinsBoth) {
     World world = world_of(
         "{\"gravity\": [0, 0, 0], \"ground\": false, \"rigid_bodies\": ["
-        "{\"name\": \"a\", \"shape\": \"box\", \"size\": [0.6, 0.4, 0.2], \"mass\": 2, \"position\": [-1, 0, 0],"
+        "{\"name\": \"a\", \"shape\": \"box\", \"size\": [0.6, 0.4, 0.2], \"mass\": 2, \"position\": [-2, 0, 0],"
         " \"velocity\": [0.1, 0.2, 0]},"
-        "{\"name\": \"b\", \"shape\": \"box\", \"size\": [0.4, 0.4, 0.4], \"mass\": 3, \"position\": [1, 0.5, 0]}],"
+        "{\"name\": \"b\", \"shape\": \"box\", \"size\": [0.4, 0.4, 0.4], \"mass\": 3, \"position\": [2, 0.5, 0]}],"
         " \"springs\": [{\"a\": {\"body\": \"a\", \"point\": [0.3, 0.2, 0.1]}, \"b\": {\"body\": \"b\", \"point\": [-0.2, 0.1, -0.2]},"
-        " \"stiffness\": 30, \"damping\": 0.5, \"rest_length\": 0.5}]}");
+        " \"stiffness\": 30, \"damping\": 0.5, \"rest_length\": 3.0}]}");  // 0.54 m stretched: they never touch
     const Vec3d P0 = world.momentum(), L0 = world.angular_momentum();
     world.run(250);
     ASSERT_EQ(world.status(), Status::Ok);

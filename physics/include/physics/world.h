@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "physics/arrays.h"
+#include "physics/broad_phase.h"
+#include "physics/collide.h"
 #include "physics/contact.h"
 #include "physics/link.h"
 #include "physics/mesh.h"
@@ -25,6 +27,8 @@
 #include "physics/thread_pool.h"
 
 namespace softbody {
+
+struct RigidContactScratch;  // rigid_contacts.h
 
 enum class Status { Ok, Diverged };
 
@@ -187,6 +191,7 @@ private:
     Params params_;
     std::vector<SoftBody> soft_;
     std::vector<RigidBody> rigid_;
+    std::vector<CollisionShape> shapes_;  // each rigid body's, beside it
     std::vector<Link> links_;
     std::vector<std::string> notes_;
 
@@ -196,6 +201,7 @@ private:
     std::vector<Vec3d> link_force_on_rigid_, link_torque_on_rigid_;
     std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
     std::vector<RigidContact> contacts_, previous_contacts_;
+    std::unique_ptr<RigidContactScratch> rigid_contact_scratch_;  // the broad phase's buffers
     std::unique_ptr<ThreadPool> pool_;
     bool reference_kernel_;
 
