@@ -8,32 +8,57 @@ namespace softbody {
 
 namespace {
 
-// One side of a contact: a body's velocity state, or nothing (the ground, 1/m = 0, J^-1 = 0).
+// One side of a contact: a rigid body's state, a particle, or nothing (the ground: 1/m = 0,
+// J^-1 = 0).
 struct Side {
-    double* s = nullptr;
+    double* s = nullptr;               // a rigid body's thirteen numbers
+    const SolverParticles* p = nullptr;  // or a soft body's particles, and which one
+    std::size_t i = 0;
     double inv_mass = 0.0;
-    Mat3 J_inv;  // world axes (Eq. 32), fixed for the velocity pass
+    Mat3 J_inv;  // world axes (Eq. 32), fixed for the velocity pass; zero for a particle
 
-    Vec3d x() const { return s ? Vec3d{s[rigid::X], s[rigid::X + 1], s[rigid::X + 2]} : Vec3d{}; }
+    bool moves() const { return inv_mass > 0.0 || !(J_inv == Mat3{}); }
+    Vec3d centre() const {
+        if (s) return {s[rigid::X], s[rigid::X + 1], s[rigid::X + 2]};
+        if (p) return {p->x[i], p->y[i], p->z[i]};
+        return {};
+    }
     // Velocity of the body's material point at offset r from its centre of mass: v + w x r.
     Vec3d point_velocity(const Vec3d& r) const {
-        if (!s || (inv_mass == 0.0 && J_inv == Mat3{})) return {};
+        if (p) return {p->vx[i], p->vy[i], p->vz[i]};
+        if (!s || !moves()) return {};
         const Vec3d v = Vec3d{s[rigid::P], s[rigid::P + 1], s[rigid::P + 2]} * inv_mass;
         const Vec3d omega = J_inv * Vec3d{s[rigid::L], s[rigid::L + 1], s[rigid::L + 2]};
         return v + cross(omega, r);
     }
-    // An impulse j at offset r: P += j (Eq. 9, 10), L += r x j (Eq. 37).
-    void apply(const Vec3d& j, const Vec3d& r) {
-        if (!s || inv_mass == 0.0) return;
+    // An impulse j at offset r: P += j (Eq. 9, 10), L += r x j (Eq. 37); a particle's v += j / m.
+    void apply(const Vec3d& j, const Vec3d& r) const {
+        if (inv_mass == 0.0) return;
+        if (p) {
+            p->vx[i] = float(double(p->vx[i]) + j.x * inv_mass);
+            p->vy[i] = float(double(p->vy[i]) + j.y * inv_mass);
+            p->vz[i] = float(double(p->vz[i]) + j.z * inv_mass);
+            return;
+        }
         const Vec3d dL = cross(r, j);
         for (int k = 0; k < 3; ++k) {
             s[rigid::P + k] += j[k];
             s[rigid::L + k] += dL[k];
         }
     }
+    // The position pass's move of the centre (and, for a particle, of the particle).
+    void move(const Vec3d& d) const {
+        if (p) {
+            p->x[i] = float(double(p->x[i]) + d.x);
+            p->y[i] = float(double(p->y[i]) + d.y);
+            p->z[i] = float(double(p->z[i]) + d.z);
+        } else if (s) {
+            for (int k = 0; k < 3; ++k) s[rigid::X + k] += d[k];
+        }
+    }
 };
 
-Side side_of(std::span<const SolverBody> bodies, std::int64_t index) {
+Side rigid_side(std::span<const SolverBody> bodies, std::int64_t index) {
     Side side;
     if (index < 0) return side;
     const SolverBody& b = bodies[static_cast<std::size_t>(index)];
@@ -42,6 +67,15 @@ Side side_of(std::span<const SolverBody> bodies, std::int64_t index) {
     const Quat q{b.state[rigid::Q], b.state[rigid::Q + 1], b.state[rigid::Q + 2], b.state[rigid::Q + 3]};
     const Mat3 R = q.to_matrix();
     side.J_inv = R * b.J_body_inv * R.transposed();
+    return side;
+}
+
+Side side_a(const RigidContact& c, std::span<const SolverBody> bodies, std::span<const SolverParticles> particles) {
+    if (c.soft < 0) return rigid_side(bodies, c.a);
+    Side side;
+    side.p = &particles[std::size_t(c.soft)];
+    side.i = c.a;
+    side.inv_mass = side.p->inv_mass[c.a];
     return side;
 }
 
@@ -58,17 +92,22 @@ struct Row {
     double k_n = 0.0, k_t1 = 0.0, k_t2 = 0.0;  // inverse effective masses (Eq. 38's denominator)
     double target = 0.0;                      // least normal velocity allowed: 0, or -gap / h
     double v_n0 = 0.0;                        // normal velocity before any impulse (< 0: approaching)
+    double mu = 0.0;                          // this step's friction coefficient
 };
 
-using Key = std::tuple<std::uint32_t, std::int32_t, std::uint32_t>;
-Key key_of(const RigidContact& c) { return {c.a, c.b, c.feature}; }
+using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
+Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
+// The pair of bodies a contact belongs to: a soft body's particles count as one body here.
+using Pair = std::tuple<std::int32_t, std::uint32_t, std::int32_t>;
+Pair pair_of(const RigidContact& c) { return {c.soft, c.soft >= 0 ? 0u : c.a, c.b}; }
 
 // Where each manifold starts: the contacts of one pair of bodies lie next to each other (the
-// ground's of one body too); the last entry is the end.
+// ground's of one body too; each particle is a manifold of its own); the last entry is the end.
 std::vector<std::size_t> manifolds(const std::vector<RigidContact>& contacts) {
     std::vector<std::size_t> start{0};
     for (std::size_t i = 1; i < contacts.size(); ++i) {
-        if (contacts[i].a != contacts[i - 1].a || contacts[i].b != contacts[i - 1].b) start.push_back(i);
+        const RigidContact &c = contacts[i], &d = contacts[i - 1];
+        if (c.a != d.a || c.b != d.b || c.soft != d.soft) start.push_back(i);
     }
     start.push_back(contacts.size());
     return start;
@@ -86,6 +125,17 @@ void turn(double* s, const Vec3d& theta) {
     s[rigid::Q + 3] = turned.z;
 }
 
+// The impulse along n that brings the contact's normal velocity to `target`, the total kept
+// >= 0 (Eq. 38 with the target in place of -e v_n).
+void normal_impulse(RigidContact& c, Row& row, double target) {
+    const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
+    const double lambda = std::max(c.normal_impulse + (target - dot(v_rel, c.normal)) / row.k_n, 0.0);
+    const Vec3d j = c.normal * (lambda - c.normal_impulse);
+    c.normal_impulse = lambda;
+    row.a.apply(j, row.r_a);
+    row.b.apply(-j, row.r_b);
+}
+
 }  // namespace
 
 double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& r_a, double inv_m_b,
@@ -94,19 +144,21 @@ double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& 
 }
 
 void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::vector<RigidContact>& previous,
-                              std::span<const SolverBody> bodies, const SolverSettings& settings) {
+                              std::span<const SolverBody> bodies, std::span<const SolverParticles> particles,
+                              const SolverSettings& settings) {
     if (contacts.empty()) return;
-    // Last step's contacts by (a, b, feature), to find each persisting one in log time.
+    // Last step's contacts by key, to find each persisting one in log time.
     std::vector<std::size_t> last(previous.size());
     for (std::size_t k = 0; k < last.size(); ++k) last[k] = k;
     std::sort(last.begin(), last.end(), [&](std::size_t x, std::size_t y) { return key_of(previous[x]) < key_of(previous[y]); });
+
     std::vector<Row> rows(contacts.size());
     for (std::size_t i = 0; i < contacts.size(); ++i) {
         RigidContact& c = contacts[i];
         Row& row = rows[i];
-        row.a = side_of(bodies, c.a);
-        row.b = side_of(bodies, c.b);
-        row.r_a = c.arm_a;
+        row.a = side_a(c, bodies, particles);
+        row.b = rigid_side(bodies, c.b);
+        row.r_a = c.soft >= 0 ? Vec3d{} : c.arm_a;
         row.r_b = c.b < 0 ? Vec3d{} : c.arm_b;
         tangents(c.normal, row.t1, row.t2);
         row.k_n = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, c.normal);
@@ -117,6 +169,9 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
         c.approach_speed = -row.v_n0;
         // Stop the approach; a contact still apart may close its gap this step, no more.
         row.target = settings.speculative ? -std::max(c.separation, 0.0) / settings.h : 0.0;
+        // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
+        // for one already sliding: particle_contacts.h); a rigid body has one mu.
+        row.mu = c.soft >= 0 ? c.static_friction : c.friction;
     }
     // Warm start from the same contacts last step, once every approach is measured.
     for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -141,7 +196,6 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
     }
 
     const std::vector<std::size_t> group_start = manifolds(contacts);
-
     for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
         for (std::size_t g = 0; g + 1 < group_start.size(); ++g) {
             const std::size_t first = group_start[g], end = group_start[g + 1];
@@ -153,13 +207,16 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
                 for (std::size_t i = first; i < end; ++i) {
                     RigidContact& c = contacts[i];
                     Row& row = rows[i];
-                    // Coulomb friction in impulse form: |lambda_t| <= mu lambda_n, the tangential
-                    // relative velocity brought to zero while that allows.
-                    if (c.friction > 0.0) {
+                    // Coulomb friction in impulse form: the tangential relative velocity brought
+                    // to zero while |lambda_t| <= mu lambda_n allows, and mu lambda_n against it
+                    // past that (Eq. 24's min(mu_s |F_n|, |F_t|) for a particle at rest, Eq. 25's
+                    // mu_d |F_n| for one sliding; one mu for two rigid bodies).
+                    if (row.mu > 0.0) {
                         const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
                         double t[2] = {c.tangent_impulse[0] - dot(v_rel, row.t1) / row.k_t1,
                                        c.tangent_impulse[1] - dot(v_rel, row.t2) / row.k_t2};
-                        const double limit = c.friction * c.normal_impulse, size = std::hypot(t[0], t[1]);
+                        const double size = std::hypot(t[0], t[1]);
+                        const double limit = row.mu * c.normal_impulse;
                         if (size > limit) {
                             const double s = size > 0.0 ? limit / size : 0.0;
                             t[0] *= s;
@@ -171,13 +228,7 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
                         row.a.apply(j, row.r_a);
                         row.b.apply(-j, row.r_b);
                     }
-                    // Eq. 38: lambda = (target - v_n) / (1/m_a + 1/m_b + rotational terms), the total kept >= 0.
-                    const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-                    const double lambda = std::max(c.normal_impulse + (row.target - dot(v_rel, c.normal)) / row.k_n, 0.0);
-                    const Vec3d j = c.normal * (lambda - c.normal_impulse);
-                    c.normal_impulse = lambda;
-                    row.a.apply(j, row.r_a);
-                    row.b.apply(-j, row.r_b);
+                    normal_impulse(c, row, row.target);
                 }
             }
         }
@@ -189,20 +240,19 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
     // speed it came in with (Eq. 38's (1 + e)), when its pair of bodies meets faster than a
     // resting contact does. Whether it was hit, not whether it took an impulse: four corners
     // of a face landing flat share the impulse in many ways (three would do), and a corner
-    // left without any must bounce too. And the pair decides, not each point: corners coming
-    // down at about the resting speed would otherwise bounce or not by a hair, and a box would
-    // rock on them for ever. A few passes, so that the points of a face bounce together.
-    // The pair's approach speed is the mean over its points hit: a face coming down while it
-    // turns has some corners faster and some slower, and the turn alone is no impact.
+    // left without any must bounce too. And the pair decides, not each point, by the mean
+    // approach of its points hit: corners coming down at about the resting speed would
+    // otherwise bounce or not by a hair, and a box would rock on them for ever. A few passes,
+    // so that the points of a face bounce together.
     std::vector<char> hit(contacts.size(), 0);
-    std::vector<std::pair<Key, double>> approach;  // (pair, speed) per point hit, then summed
+    std::vector<std::pair<Pair, double>> approach;  // (pair, speed) per point hit, then averaged
     for (std::size_t i = 0; i < contacts.size(); ++i) {
         const RigidContact& c = contacts[i];
         hit[i] = settings.speculative ? c.separation + settings.h * rows[i].v_n0 <= 0.0 : c.depth >= 0.0;
-        if (hit[i]) approach.emplace_back(Key{c.a, c.b, 0}, -rows[i].v_n0);
+        if (hit[i]) approach.emplace_back(pair_of(c), -rows[i].v_n0);
     }
     std::sort(approach.begin(), approach.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::vector<Key> bouncing;
+    std::vector<Pair> bouncing;
     for (std::size_t i = 0; i < approach.size();) {
         std::size_t j = i;
         double sum = 0.0;
@@ -215,41 +265,41 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
             RigidContact& c = contacts[i];
             Row& row = rows[i];
             if (c.restitution == 0.0 || !hit[i] || !(row.v_n0 < 0.0) ||
-                !std::binary_search(bouncing.begin(), bouncing.end(), Key{c.a, c.b, 0})) {
+                !std::binary_search(bouncing.begin(), bouncing.end(), pair_of(c))) {
                 continue;
             }
-            const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-            const double target = -c.restitution * row.v_n0;
-            const double lambda = std::max(c.normal_impulse + (target - dot(v_rel, c.normal)) / row.k_n, 0.0);
-            const Vec3d j = c.normal * (lambda - c.normal_impulse);
-            c.normal_impulse = lambda;
-            row.a.apply(j, row.r_a);
-            row.b.apply(-j, row.r_b);
+            normal_impulse(c, row, -c.restitution * row.v_n0);
             if (settings.speculative) c.bounce_shift = (1.0 + c.restitution) * std::max(c.separation, 0.0);
         }
     }
 }
 
-void apply_bounce_shifts(const std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies) {
-    std::vector<Vec3d> shift(bodies.size());
-    std::vector<double> largest(bodies.size(), 0.0);
+void apply_bounce_shifts(const std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies,
+                         std::span<const SolverParticles> particles) {
+    // Each side's largest shift; particles are keyed after the rigid bodies.
+    std::vector<std::pair<double, Vec3d>> shift(bodies.size());
+    std::vector<std::tuple<std::int32_t, std::uint32_t, double, Vec3d>> particle_shift;
     for (const RigidContact& c : contacts) {
         if (c.bounce_shift <= 0.0) continue;
-        const double inv_a = bodies[c.a].inv_mass, inv_b = c.b < 0 ? 0.0 : bodies[std::size_t(c.b)].inv_mass;
-        if (!(inv_a + inv_b > 0.0)) continue;
-        const auto take = [&](std::size_t body, double share, double sign) {
-            const double amount = c.bounce_shift * share;
-            if (amount > largest[body]) {
-                largest[body] = amount;
-                shift[body] = c.normal * (sign * amount);
-            }
-        };
-        take(c.a, inv_a / (inv_a + inv_b), -1.0);
-        if (c.b >= 0) take(std::size_t(c.b), inv_b / (inv_a + inv_b), 1.0);
+        const Side a = side_a(c, bodies, particles), b = rigid_side(bodies, c.b);
+        const double total = a.inv_mass + b.inv_mass;
+        if (!(total > 0.0)) continue;
+        const double on_a = c.bounce_shift * a.inv_mass / total, on_b = c.bounce_shift * b.inv_mass / total;
+        if (c.soft >= 0) particle_shift.emplace_back(c.soft, c.a, on_a, c.normal * -on_a);
+        else if (on_a > shift[c.a].first) shift[c.a] = {on_a, c.normal * -on_a};
+        if (c.b >= 0 && on_b > shift[std::size_t(c.b)].first) shift[std::size_t(c.b)] = {on_b, c.normal * on_b};
     }
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (largest[i] == 0.0 || !bodies[i].state) continue;
-        for (int n = 0; n < 3; ++n) bodies[i].state[rigid::X + n] += shift[i][n];
+        if (shift[i].first > 0.0 && bodies[i].state) {
+            for (int n = 0; n < 3; ++n) bodies[i].state[rigid::X + n] += shift[i].second[n];
+        }
+    }
+    for (const auto& [soft, i, amount, d] : particle_shift) {
+        Side side;
+        side.p = &particles[std::size_t(soft)];
+        side.i = i;
+        side.move(d);
+        (void)amount;
     }
 }
 
@@ -260,7 +310,7 @@ void apply_bounce_shifts(const std::vector<RigidContact>& contacts, std::span<co
 // another about different axes compose into a turn about a third (their commutator), which
 // would make a box resting on four corners creep about the vertical.
 void solve_contact_positions(std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies,
-                             const SolverSettings& settings) {
+                             std::span<const SolverParticles> particles, const SolverSettings& settings) {
     if (contacts.empty()) return;
     const std::vector<std::size_t> group_start = manifolds(contacts);
     std::vector<Vec3d> turns(bodies.size());
@@ -273,29 +323,29 @@ void solve_contact_positions(std::vector<RigidContact>& contacts, std::span<cons
             for (int pass = 0; pass < (end - first > 1 ? settings.manifold_passes : 1); ++pass) {
                 for (std::size_t i = first; i < end; ++i) {
                     RigidContact& c = contacts[i];
-                    const Side a = side_of(bodies, c.a), b = side_of(bodies, c.b);
-                    // Anchors where the body is now: R r turned further by this pass's turn so far.
+                    const Side a = side_a(c, bodies, particles), b = rigid_side(bodies, c.b);
+                    // Anchors where the bodies are now: R r turned further by this pass's turn so far.
                     const auto anchor = [&](const Side& side, std::int64_t index, const Vec3d& local) {
                         const Quat q{side.s[rigid::Q], side.s[rigid::Q + 1], side.s[rigid::Q + 2], side.s[rigid::Q + 3]};
                         const Vec3d r = q.to_matrix() * local;
-                        return side.x() + r + cross(turns[std::size_t(index)], r);
+                        return side.centre() + r + cross(turns[std::size_t(index)], r);
                     };
-                    const Vec3d p_a = anchor(a, c.a, c.local_a);
+                    const Vec3d p_a = c.soft >= 0 ? a.centre() : anchor(a, c.a, c.local_a);
                     const Vec3d p_b = b.s ? anchor(b, c.b, c.local_b) : c.local_b;  // the ground: a point on its plane
                     const double separation = dot(p_a - p_b, c.normal);
                     const double C =
                         std::clamp(settings.position_rate * (separation + settings.slop), -settings.max_correction, 0.0);
                     if (C >= 0.0) continue;
-                    const Vec3d r_a = p_a - a.x(), r_b = b.s ? p_b - b.x() : Vec3d{};
+                    const Vec3d r_a = c.soft >= 0 ? Vec3d{} : p_a - a.centre(), r_b = b.s ? p_b - b.centre() : Vec3d{};
                     const double k = effective_inverse_mass(a.inv_mass, a.J_inv, r_a, b.inv_mass, b.J_inv, r_b, c.normal);
                     if (!(k > 0.0)) continue;
                     const Vec3d j = c.normal * (-C / k);
-                    if (a.s && a.inv_mass > 0.0) {
-                        for (int n = 0; n < 3; ++n) a.s[rigid::X + n] += j[n] * a.inv_mass;
-                        turns[c.a] += a.J_inv * cross(r_a, j);
+                    if (a.inv_mass > 0.0) {
+                        a.move(j * a.inv_mass);
+                        if (c.soft < 0) turns[c.a] += a.J_inv * cross(r_a, j);
                     }
                     if (b.s && b.inv_mass > 0.0) {
-                        for (int n = 0; n < 3; ++n) b.s[rigid::X + n] -= j[n] * b.inv_mass;
+                        b.move(j * -b.inv_mass);
                         turns[std::size_t(c.b)] += b.J_inv * cross(r_b, -j);
                     }
                 }

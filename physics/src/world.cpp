@@ -11,6 +11,7 @@
 #include "ground_contact.h"
 #include "integrators.h"
 #include "message_text.h"
+#include "particle_contacts.h"
 #include "rigid_contacts.h"
 #include "physics/error.h"
 
@@ -308,7 +309,13 @@ void World::evaluate_forces(int stage, bool record_contacts) {
 // ---------------------------------------------------------------------------------------------
 void World::step(float h) {
     const double hd = h;
-    if (!rigid_.empty()) y_step_start_ = y_;
+    if (!rigid_.empty()) {
+        y_step_start_ = y_;
+        for (SoftBody& body : soft_) {
+            copy(body.x, body.x_step_start);
+            copy(body.v, body.v_step_start);
+        }
+    }
     switch (params_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
@@ -342,11 +349,11 @@ void World::step(float h) {
             flat_rk4_finish(y_, k_[0], k_[1], k_[2], k_[3], hd);
             break;
     }
-    for (SoftBody& body : soft_) {
-        hold_pins(body);
-        resolve_ground_contacts(body, params_, h);
-    }
+    for (SoftBody& body : soft_) hold_pins(body);
+    // The rigid bodies' contacts before the ground's for particles: the ground moves for no one,
+    // so it has the last word on a particle caught between it and a rigid body.
     if (!rigid_.empty()) solve_rigid_contacts(h);
+    for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
 // Eq. 37 and 38 at every contact of the step, with the ground a static body. Contacts are
@@ -367,26 +374,55 @@ void World::solve_rigid_contacts(float h) {
         rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_step_start_[at], &y_[at], params_, h, contacts_);
     }
     rigid_body_contacts(rigid_, shapes_, y_step_start_, params_, h, *rigid_contact_scratch_, contacts_);
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_step_start_, params_, h,
+                                contacts_);
+    }
     // Where the step took each contact's two points (the ground's: fixed).
-    for (RigidContact& c : contacts_) c.depth = -contact_separation(c, rigid_, y_);
+    const auto separation = [&](const RigidContact& c) {
+        return c.soft >= 0 ? particle_separation(c, soft_[std::size_t(c.soft)].x, rigid_, y_) : contact_separation(c, rigid_, y_);
+    };
+    for (RigidContact& c : contacts_) c.depth = -separation(c);
     if (!speculative) std::erase_if(contacts_, [](const RigidContact& c) { return c.depth < 0.0; });
+    if (contacts_.empty()) {
+        if (speculative) symplectic_positions(rigid_, y_step_start_, y_, h);
+        return;
+    }
     std::vector<SolverBody> bodies(rigid_.size());
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         bodies[b] = {&y_[b * rigid::kStateSize], rigid_[b].inv_mass, rigid_[b].J_body_inv};
     }
+    std::vector<SolverParticles> particles(soft_.size());
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        SoftBody& body = soft_[b];
+        particles[b] = {body.x.x.data(), body.x.y.data(), body.x.z.data(), body.v.x.data(),
+                        body.v.y.data(), body.v.z.data(), body.inv_mass.data()};
+    }
     SolverSettings settings;
     settings.h = h;
     settings.speculative = speculative;
-    // As for particles: impacts slower than two steps of gravity are resting contact.
+    // As for particles at the ground: impacts slower than two steps of gravity are resting contact.
     settings.bounce_speed = 2.0 * std::abs(double(params_.gravity.z)) * double(h);
-    solve_contact_velocities(contacts_, previous_contacts_, bodies, settings);
+    solve_contact_velocities(contacts_, previous_contacts_, bodies, particles, settings);
     if (speculative) {
         symplectic_positions(rigid_, y_step_start_, y_, h);
-        apply_bounce_shifts(contacts_, bodies);
+        // A particle in contact moves the step at its solved velocity, as a rigid body does.
+        for (const RigidContact& c : contacts_) {
+            if (c.soft < 0) continue;
+            SoftBody& body = soft_[std::size_t(c.soft)];
+            body.x.set(c.a, body.x_step_start[c.a] + body.v[c.a] * h);
+        }
+        apply_bounce_shifts(contacts_, bodies, particles);
         // Where the positions took each contact's points: the position pass starts from there.
-        for (RigidContact& c : contacts_) c.depth = -contact_separation(c, rigid_, y_);
+        for (RigidContact& c : contacts_) c.depth = -separation(c);
     }
-    solve_contact_positions(contacts_, bodies, settings);
+    solve_contact_positions(contacts_, bodies, particles, settings);
+    // Verlet carries its step x_n - x_{n-1}: a particle the contacts moved takes v h, as at the ground.
+    if (params_.integrator == Integrator::Verlet) {
+        for (const RigidContact& c : contacts_) {
+            if (c.soft >= 0) soft_[std::size_t(c.soft)].verlet_step.set(c.a, soft_[std::size_t(c.soft)].v[c.a] * h);
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

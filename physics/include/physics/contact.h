@@ -1,5 +1,5 @@
-// A contact between a rigid body and the ground (or, as the collision issue adds them, another
-// body): where, along which normal, how deep, and what the solver did there. The World keeps
+// A contact: a rigid body or a soft body's particle (side a) against the ground or a rigid body
+// (side b): where, along which normal, how deep, and what the solver did there. The World keeps
 // the contacts of its last step for display and teaching (the app's contact overlay).
 #pragma once
 
@@ -10,8 +10,9 @@
 namespace softbody {
 
 struct RigidContact {
-    std::uint32_t a = 0;         // the rigid body the normal points toward
+    std::uint32_t a = 0;         // the rigid body the normal points toward (or the particle, see `soft`)
     std::int32_t b = -1;         // the other rigid body, or -1 for the ground (static: 1/m = 0, J^-1 = 0)
+    std::int32_t soft = -1;      // >= 0: side a is particle a of this soft body (no rotation term)
     std::uint32_t feature = 0;   // which vertex or edge made it, to carry its impulses to the next step
     Vec3d point;                 // world, m, where the step began
     Vec3d arm_a, arm_b;          // from each body's centre of mass to the point, world axes (the r of Eq. 38)
@@ -20,7 +21,9 @@ struct RigidContact {
     double separation = 0.0;     // the same points' gap along the normal at the step's start, m (< 0: overlapping)
     Vec3d local_a, local_b;      // the point in each body's axes, from its centre of mass
     double restitution = 0.0;    // e
-    double friction = 0.0;       // mu
+    double friction = 0.0;       // mu; for a particle, mu_d of Eq. 25 while it slides
+    double static_friction = 0.0;  // a particle's stick limit: mu_s (Eq. 24) when it was at rest
+                                   // as the step began, mu_d when it was already sliding
 
     // What the solver found (Eq. 37, 38): v_rel . n before, the accumulated impulses.
     double approach_speed = 0.0; // -v_rel . n before the impulses (> 0: closing), m/s

@@ -59,6 +59,7 @@ struct SoftBody {
     std::vector<ParticleContact> contacts;     // ground contacts of the current step
     Vec3Array accel[4], x_tmp, v_stage, v_sum; // integrator scratch (four stages for RK4)
     Vec3Array x_good, v_good, verlet_step_good;  // the last state that passed the checks
+    Vec3Array x_step_start, v_step_start;  // the step's start: contacts with rigid bodies are found there
     float verlet_h_good = 0.0f;
 
     std::size_t particle_count() const { return x.size(); }

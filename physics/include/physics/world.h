@@ -138,7 +138,8 @@ public:
         rigid_[i].restitution = restitution;
         rigid_[i].friction = friction;
     }
-    // Contacts of the last step (rigid bodies with the ground and with one another).
+    // Contacts of the last step: rigid bodies with the ground and with one another, and soft
+    // bodies' particles with rigid bodies (RigidContact::soft).
     const std::vector<RigidContact>& contacts() const { return contacts_; }
     const std::vector<Link>& links() const { return links_; }
     // Where each end of a link is now (world, m).

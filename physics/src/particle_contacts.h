@@ -1,0 +1,35 @@
+// Internal to the physics library: a soft body's particles against the rigid bodies, as
+// RigidContacts for the solver (contact_solver.h) with the particle on side a (Eq. 38 with no
+// rotation term for body 1) and the rigid body on side b.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "physics/arrays.h"
+#include "physics/collide.h"
+#include "physics/contact.h"
+#include "physics/params.h"
+#include "physics/rigid_body.h"
+#include "physics/soft_body.h"
+
+namespace softbody {
+
+// Appends a contact for every particle of `body` (soft body number `soft`) that was within
+// reach of a rigid body's surface where the step began (body.x_step_start, `start`): within how
+// far the particle moved this step plus the rigid body's speculative margin (ground_contact.h).
+// A particle inside a shape goes out along the nearest surface's normal (point_contact).
+// Friction is Eq. 24 and 25 with the world's mu_s and mu_d, unless the rigid body sets
+// `friction`, which then serves as both: the contact's static_friction is mu_s when the particle
+// was at rest on the surface as the step began (slower than 0.1 mm/s across it, as at the
+// ground), mu_d when it was sliding. Restitution is the larger of the world's and the rigid
+// body's.
+void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
+                             std::span<const double> start, const Params& world, double h, std::vector<RigidContact>& out);
+
+// The gap along its normal between a particle and the rigid body's material point it touched,
+// where both are now (< 0: the particle is inside).
+double particle_separation(const RigidContact& c, const Vec3Array& x, std::span<const RigidBody> bodies,
+                           std::span<const double> state);
+
+}  // namespace softbody
