@@ -6,7 +6,8 @@
 // checks. Each of those lives in a file of its own, named for its concept.
 //
 // Soft bodies do not collide with one another (as in Jolt): each feels its own springs and
-// dampers, gravity, drag, the ground and the springs attached to it.
+// dampers, gravity, drag, the ground, the rigid bodies its particles touch and the springs
+// attached to it.
 #pragma once
 
 #include <cstdint>
