@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 
+#include "physics/convex_hull.h"
 #include "physics/world.h"
 #include "render/frame.h"
 
@@ -110,8 +111,16 @@ inline WorldBounds world_bounds(const World& world) {
         const Vec3Array& x = world.soft_body(b).x;
         for (std::size_t i = 0; i < x.size(); ++i) add({x.x[i], x.y[i], x.z[i]}, 0.0f);
     }
+    // A rigid body's hull corners where it is (a sphere: its centre and radius): a long thin
+    // wall then counts for its own extent, not for the sphere about it.
     for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
-        add(to_glm(world.rigid_motion(b).x), float(world.rigid_body(b).bounding_radius));
+        const RigidBody& body = world.rigid_body(b);
+        const RigidMotion m = world.rigid_motion(b);
+        if (!body.hull) {
+            add(to_glm(m.x), float(body.bounding_radius));
+            continue;
+        }
+        for (const Vec3d& v : body.hull->vertices) add(to_glm(m.x + m.R * v), 0.0f);
     }
     bounds.centre = 0.5f * (low + high);
     bounds.radius = 0.5f * glm::length(high - low);

@@ -57,6 +57,7 @@ void Demo::after_load(const Scene& scene) {
     built_rigid_bodies_ = scene.rigid_bodies;
     clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
     energy_.clear();
+    last_collision_.reset();
     match_ground(scene.params, appearance);
     frame_body();
     sample_energy();
@@ -111,6 +112,7 @@ void Demo::reset() {
     scene_.params = world_->params();
     clock_.reset();
     energy_.clear();
+    last_collision_.reset();
     sample_energy();
 }
 
@@ -175,6 +177,7 @@ void Demo::advance(double wall_seconds) {
     const auto start = std::chrono::steady_clock::now();
     for (int t = 0; t < ticks && world_->status() == Status::Ok; ++t) {
         world_->tick();
+        note_collision();
         ++ticks_last_frame_;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -191,9 +194,34 @@ void Demo::advance(double wall_seconds) {
 void Demo::single_tick() {
     if (world_->status() != Status::Ok) return;
     world_->tick();
+    note_collision();
     ticks_last_frame_ = 1;
     if (world_->status() != Status::Ok) error_ = world_->divergence();
     sample_energy();
+}
+
+// A collision, not resting contact: a point closing faster than two steps of gravity (and at
+// least 1 cm/s, for a world without gravity). The one with the largest impulse is kept.
+void Demo::note_collision() {
+    const World& world = *world_;
+    const double h = double(world.params().dt) / world.substeps_in_use();
+    const double closing = std::max(0.01, 2.0 * std::abs(double(world.params().gravity.z)) * h);
+    const RigidContact* hardest = nullptr;
+    for (const RigidContact& c : world.contacts()) {
+        if (c.approach_speed > closing && (!hardest || c.normal_impulse > hardest->normal_impulse)) hardest = &c;
+    }
+    if (!hardest) return;
+    const RigidContact& c = *hardest;
+    LastCollision hit;
+    hit.time = world.time();
+    hit.body_1 = c.soft >= 0 ? "particle " + std::to_string(c.a) + " of '" + world.soft_body(std::size_t(c.soft)).name + "'"
+                             : world.rigid_body(c.a).name;
+    hit.body_2 = c.b < 0 ? "the ground" : world.rigid_body(std::size_t(c.b)).name;
+    hit.points = std::size_t(std::count_if(world.contacts().begin(), world.contacts().end(), [&](const RigidContact& d) {
+        return d.soft == c.soft && d.b == c.b && (c.soft >= 0 || d.a == c.a);
+    }));
+    hit.terms = world.impulse_terms(c);
+    last_collision_ = std::move(hit);
 }
 
 void Demo::sample_energy() {

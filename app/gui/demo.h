@@ -23,6 +23,14 @@ struct EnergySample {
     double angular_momentum;  // |L| about the origin, every body
 };
 
+// The hardest hit of the latest tick that had one: Eq. 38 term by term for its main point.
+struct LastCollision {
+    double time = 0.0;           // s
+    std::string body_1, body_2;  // names: a rigid body, a soft body's particle, or the ground
+    std::size_t points = 1;      // how many points that pair of bodies touched at
+    ImpulseTerms terms;
+};
+
 // What the mouse is over: a particle of a soft body, or a point on a rigid body.
 struct Pick {
     bool rigid = false;
@@ -71,6 +79,7 @@ public:
     int ticks_last_frame() const { return ticks_last_frame_; }
     double physics_ms_per_tick() const { return physics_ms_per_tick_; }
     const std::deque<EnergySample>& energy_history() const { return energy_; }
+    const std::optional<LastCollision>& last_collision() const { return last_collision_; }
     const std::string& error() const { return error_; }
     void set_error(std::string message) { error_ = std::move(message); }
     void clear_error() { error_.clear(); }
@@ -106,6 +115,7 @@ public:
 private:
     void after_load(const Scene& scene);
     void sample_energy();
+    void note_collision();  // after each tick
 
     std::unique_ptr<World> world_;
     Scene scene_;            // what the current world was built from (its params kept by the world)
@@ -114,6 +124,7 @@ private:
     std::string error_;
     std::string source_;
     std::deque<EnergySample> energy_;
+    std::optional<LastCollision> last_collision_;
     int ticks_last_frame_ = 0;
     double physics_ms_per_tick_ = 0.0;
     float grab_depth_ = 0.0f;

@@ -1,5 +1,5 @@
 // The Dear ImGui panels of the demo: Simulation, Parameters, Mesh, Display, Energy, Stability,
-// Presets, and the help overlay. They read and edit the Demo; they own only UI state.
+// Rigid bodies, Last collision, Presets, and the help overlay. They read and edit the Demo; they own only UI state.
 #pragma once
 
 #include <string>
@@ -26,6 +26,7 @@ private:
     void parameters(Demo& demo);
     void mesh(Demo& demo);
     void rigid_bodies(Demo& demo);
+    void last_collision(Demo& demo);
     void display(Demo& demo);
     void energy(Demo& demo);
     void stability(Demo& demo);

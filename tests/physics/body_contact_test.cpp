@@ -73,6 +73,17 @@ TEST(RigidCollision, Figure7BallHitsTheEndOfARod) {
     EXPECT_NEAR(rod.v.y, want.rod_v, 1e-12);
     EXPECT_NEAR(rod.omega.z, want.rod_omega, 1e-12);
     EXPECT_NEAR(ball.v.y, want.ball_v, 1e-12);
+    // The read-out of Eq. 38 term by term (the app's "last collision") says the same: the
+    // rod is body 1 (the normal points out of the ball toward it).
+    ASSERT_EQ(world.contacts().size(), 1u);
+    const ImpulseTerms terms = world.impulse_terms(world.contacts().front());
+    EXPECT_NEAR(terms.v_rel_n, -1.0, 1e-12);
+    EXPECT_NEAR(terms.inv_mass_1, 1.0, 1e-15);
+    EXPECT_NEAR(terms.inv_mass_2, 1.0, 1e-15);
+    EXPECT_NEAR(terms.rotation_1, d * d / ((1.0 + 0.0004) / 12.0), 1e-12);
+    EXPECT_NEAR(terms.rotation_2, 0.0, 1e-15);  // a sphere's r is along n: no turn
+    EXPECT_NEAR(terms.lambda, want.lambda, 1e-12);
+    EXPECT_NEAR(terms.solver_lambda, want.lambda, 1e-12);
     // The thin-rod limit of the same formula, to see Figure 7's numbers: 0.4, 2.4, 0.6 within
     // what the 2 cm thickness and the 1 cm from the end change (under 4 %).
     EXPECT_NEAR(rod.v.y, 0.4, 0.4 * 0.04);
@@ -269,7 +280,7 @@ World cube_on_ramp(double degrees) {
         cube_on(face, r.along, r.up, 0.3, 0.0));
 }
 // Where the four particles on the ramp (0 to 3: the bottom face) are along it, on average.
-double downhill(const World& world, const Vec3Array& a, const Vec3d& along) {
+double downhill(const Vec3Array& a, const Vec3d& along) {
     double sum = 0.0;
     for (std::size_t i = 0; i < 4; ++i) sum += dot(Vec3d(a[i]), along);
     return sum / 4.0;
@@ -284,7 +295,7 @@ TEST(SoftOnRigid, CubeOnATiltingRampHoldsUntilTanThetaReachesMuS) {
     World world = cube_on_ramp(kRampDegrees);
     const Vec3d along = ramp_axes(kRampDegrees).along;
     world.run(50);  // settles into its springs
-    const double s0 = downhill(world, world.positions(), along);
+    const double s0 = downhill(world.positions(), along);
     double went_at = 0.0;
     for (int t = 0; t < 1000 && went_at == 0.0; ++t) {
         const double extra = 2.0 * (t + 1) * 0.02 * kPi / 180.0;
@@ -293,7 +304,7 @@ TEST(SoftOnRigid, CubeOnATiltingRampHoldsUntilTanThetaReachesMuS) {
         world.set_params(p);
         world.tick();
         ASSERT_EQ(world.status(), Status::Ok);
-        if (downhill(world, world.positions(), along) - s0 > 1e-3) went_at = kRampDegrees * kPi / 180.0 + extra;
+        if (downhill(world.positions(), along) - s0 > 1e-3) went_at = kRampDegrees * kPi / 180.0 + extra;
     }
     ASSERT_GT(went_at, 0.0) << "it never slid";
     EXPECT_GT(std::tan(went_at), 0.95 * 0.6);
@@ -306,10 +317,10 @@ TEST(SoftOnRigid, SlidesDownASteepRampWithTheAccelerationOfMuD) {
     World world = cube_on_ramp(degrees);
     const Vec3d along = ramp_axes(degrees).along;
     world.run(25);  // landed on its springs, sliding
-    const double v1 = downhill(world, world.velocities(), along);
+    const double v1 = downhill(world.velocities(), along);
     world.run(50);
     ASSERT_EQ(world.status(), Status::Ok);
-    const double v2 = downhill(world, world.velocities(), along);
+    const double v2 = downhill(world.velocities(), along);
     // g (sin 40 - 0.4 cos 40) = 3.30 m/s^2. Within 2 %: the body's springs still ring a little.
     const double a = 9.81 * (std::sin(degrees * kPi / 180.0) - 0.4 * std::cos(degrees * kPi / 180.0));
     EXPECT_NEAR((v2 - v1) / 1.0, a, 0.02 * a);

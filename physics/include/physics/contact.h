@@ -33,4 +33,22 @@ struct RigidContact {
     double bounce_shift = 0.0;   // m: how far a bounce from a gap moves the bodies back (see contact_solver.h)
 };
 
+// Eq. 38 for one contact, term by term, as a student checks it by hand: the impulse along n that
+// takes the closing speed v_rel . n to -e times it, for this contact alone (World::impulse_terms).
+// Body 1 is side a (a rigid body, or a particle: no rotation term), body 2 side b (the ground:
+// 1/m = 0, no rotation term).
+struct ImpulseTerms {
+    Vec3d n;                  // the normal, out of body 2 toward body 1
+    double v_rel_n = 0.0;     // (v_1 + w_1 x r_1 - v_2 - w_2 x r_2) . n before the impulses, m/s (< 0: closing)
+    double e = 0.0;           // restitution
+    Vec3d r1, r2;             // from each centre of mass to the point, m
+    Vec3d r1_x_n, r2_x_n;     // r x n, m
+    double inv_mass_1 = 0.0, inv_mass_2 = 0.0;  // 1/m, 1/kg
+    double rotation_1 = 0.0;  // n . ((J_1^-1 (r_1 x n)) x r_1), 1/kg
+    double rotation_2 = 0.0;  // n . ((J_2^-1 (r_2 x n)) x r_2), 1/kg
+    double denominator = 0.0; // the sum of the four, 1/kg
+    double lambda = 0.0;      // -(1 + e) v_rel . n / denominator, N s
+    double solver_lambda = 0.0;  // what the solver applied here, every contact and friction at once, N s
+};
+
 }  // namespace softbody

@@ -142,6 +142,8 @@ public:
     // Contacts of the last step: rigid bodies with the ground and with one another, and soft
     // bodies' particles with rigid bodies (RigidContact::soft).
     const std::vector<RigidContact>& contacts() const { return contacts_; }
+    // Eq. 38 term by term for one of them, with the bodies' inertia where they are now.
+    ImpulseTerms impulse_terms(const RigidContact& contact) const;
     const std::vector<Link>& links() const { return links_; }
     // Where each end of a link is now (world, m).
     Vec3d link_end_position(const LinkEnd& end) const;
