@@ -32,6 +32,7 @@
 #include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
+#include "physics/scene_io.h"
 #include "physics/world.h"
 
 namespace softbody::app {
@@ -40,7 +41,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: softbody bench [--quick] [--json] [--sizes N,N,...] [--seconds S] [--threads N]\n"
-    "                      [--baseline-max N] [--reference-max N] [--no-kernels] [--no-meshes] [--no-search]\n"
+    "                      [--baseline-max N] [--reference-max N] [--no-kernels] [--no-meshes] [--no-bodies]\n"
+    "                      [--no-search]\n"
     "  --quick           a few seconds: small sizes, short measurements (for CI)\n"
     "  --json            print one JSON object instead of the tables\n"
     "  --sizes           cloud sizes (default 500,1000,2500,5000,10000)\n"
@@ -51,6 +53,7 @@ constexpr const char* kUsage =
     "  --reference-max   largest N for the reference kernel (default 10000)\n"
     "  --no-kernels      skip the table of the pair kernel alone (every tile variant)\n"
     "  --no-meshes       skip the bundled meshes\n"
+    "  --no-bodies       skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)\n"
     "  --no-search       skip the search for the largest real-time cloud";
 
 using Clock = std::chrono::steady_clock;
@@ -368,6 +371,33 @@ Measurement measure(Kernel kernel, const std::function<Mesh()>& make_mesh, int t
     });
 }
 
+// A generated scene's tick (physics/generated.h), rigid bodies and contacts with it, in a child.
+Measurement measure_scene(const std::string& name, int threads, double budget) {
+    return in_child([&]() {
+        Measurement m;
+        World world(make_world_def(load_scene(name)), WorldOptions{threads, false});
+        m.threads = world.threads();
+        m.substeps = world.substeps_in_use();
+        const double n = double(world.soft_body_count() ? world.particle_count() : 0);
+        if (n > 0) {
+            const Stability s = world.stability();
+            m.h_omega = s.h_omega;
+            m.limit = s.limit;
+        }
+        // A second's fall first: the bodies in the bin and on one another, the contacts busy.
+        world.run(50);
+        time_ticks(
+            m, [&] { world.tick(); }, [&] { return world.status() == Status::Ok; }, budget, 3, 20000, false);
+        m.pairs_per_tick = m.substeps * n * (n - 1.0) / 2.0;
+        m.evals_per_tick = m.pairs_per_tick;
+        if (world.status() != Status::Ok) {
+            m.diverged = 1;
+            std::snprintf(m.note, sizeof m.note, "%s", world.divergence().c_str());
+        }
+        return m;
+    });
+}
+
 // The pair kernel alone, one tile variant: compute() on a cloud displaced from rest and moving,
 // no tick around it. calls/ticks are force evaluations here.
 Measurement measure_kernel(PairKernelVariant variant, std::size_t n, int threads, double budget) {
@@ -399,7 +429,7 @@ Measurement measure_kernel(PairKernelVariant variant, std::size_t n, int threads
 }
 
 struct Row {
-    std::string scene;  // "cloud" or the mesh file's name
+    std::string scene;  // "cloud", the mesh file's name, or a generated scene's ("pile:100")
     std::size_t n = 0;
     std::string kernel;  // "fast (avx512)", "reference", "baseline"
     Measurement m;
@@ -409,6 +439,7 @@ double ms(double seconds) { return seconds * 1e3; }
 
 std::string si(double value) {
     char text[32];
+    if (!(value > 0.0)) return "-";  // no pairs: a scene of rigid bodies only
     if (value >= 1e9) std::snprintf(text, sizeof text, "%.2fe9", value / 1e9);
     else if (value >= 1e6) std::snprintf(text, sizeof text, "%.1fe6", value / 1e6);
     else std::snprintf(text, sizeof text, "%.0f", value);
@@ -437,7 +468,7 @@ nlohmann::ordered_json row_json(const Row& r, double dt) {
 
 void print_header(std::ostream& out) {
     char line[256];
-    std::snprintf(line, sizeof line, "%-16s %6s  %-15s %3s %4s %6s %17s %9s %9s %8s %8s %8s", "scene", "N", "kernel",
+    std::snprintf(line, sizeof line, "%-20s %6s  %-15s %3s %4s %6s %17s %9s %9s %8s %8s %8s", "scene", "N", "kernel",
                   "thr", "sub", "ticks", "ms/tick (best)", "pairs/s", "evals/s", "ticks/s", "x realtm", "peak MB");
     out << line << "\n";
 }
@@ -446,12 +477,12 @@ void print_row(std::ostream& out, const Row& r, double dt) {
     const Measurement& m = r.m;
     char line[512];
     if (!m.measured) {
-        std::snprintf(line, sizeof line, "%-16s %6zu  %-15s %3d %4d  failed: %s", r.scene.c_str(), r.n, r.kernel.c_str(),
+        std::snprintf(line, sizeof line, "%-20s %6zu  %-15s %3d %4d  failed: %s", r.scene.c_str(), r.n, r.kernel.c_str(),
                       m.threads, m.substeps, m.note);
     } else {
         char timing[40];
         std::snprintf(timing, sizeof timing, "%.4g (%.4g)", ms(m.median_s), ms(m.best_s));
-        std::snprintf(line, sizeof line, "%-16s %6zu  %-15s %3d %4d %6d %17s %9s %9s %8.1f %8.2f %8.0f%s", r.scene.c_str(),
+        std::snprintf(line, sizeof line, "%-20s %6zu  %-15s %3d %4d %6d %17s %9s %9s %8.1f %8.2f %8.0f%s", r.scene.c_str(),
                       r.n, r.kernel.c_str(), m.threads, m.substeps, m.ticks, timing, si(m.pairs_per_tick / m.median_s).c_str(),
                       si(m.evals_per_tick / m.median_s).c_str(), 1.0 / m.median_s, dt / m.median_s, double(m.peak_kb) * 1024.0 / 1e6,
                       m.diverged ? "  DIVERGED" : "");
@@ -488,7 +519,7 @@ std::vector<std::string> bundled_meshes() {
 
 int bench_command(int argc, char** argv) {
     Args args(argc, argv, 2);
-    bool quick = false, json = false, meshes = true, search = true, kernels = true;
+    bool quick = false, json = false, meshes = true, bodies = true, search = true, kernels = true;
     std::vector<std::size_t> sizes;
     double budget = -1.0;
     int threads = hardware_threads();
@@ -498,6 +529,7 @@ int bench_command(int argc, char** argv) {
         if (option == "--quick") quick = true;
         else if (option == "--json") json = true;
         else if (option == "--no-meshes") meshes = false;
+        else if (option == "--no-bodies") bodies = false;
         else if (option == "--no-search") search = false;
         else if (option == "--no-kernels") kernels = false;
         else if (option == "--sizes") sizes = parse_sizes(args.value(option));
@@ -601,6 +633,14 @@ int bench_command(int argc, char** argv) {
             auto load = [file] { return load_mesh(file); };
             for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, load, t, budget)});
             if (!quick && n <= 2500) add({name, n, "reference", measure(Kernel::Reference, load, 1, budget)});
+        }
+    }
+
+    // --- Rigid bodies and contacts: a pile of a hundred, and with a soft body on it ------------
+    if (bodies) {
+        for (const char* name : {"pile:100", "pile:100+cloud:1000"}) {
+            const std::size_t n = std::string_view(name).find("cloud") != std::string_view::npos ? 1000 : 0;
+            for (int t : thread_counts) add({name, n, fast_name, measure_scene(name, t, budget)});
         }
     }
 

@@ -14,6 +14,7 @@
 
 #include "message_text.h"
 #include "physics/error.h"
+#include "physics/generated.h"
 #include "text_file.h"
 
 namespace softbody {
@@ -141,7 +142,7 @@ std::size_t element_offset(const std::string& text, const std::string& array_key
 }
 
 std::string relative_to(const std::string& origin, const std::string& path) {
-    if (path.empty() || !fs::path(path).is_relative()) return path;
+    if (path.empty() || !fs::path(path).is_relative() || is_generated(path)) return path;
     const fs::path folder = fs::path(origin).parent_path();
     return folder.empty() ? path : (folder / path).lexically_normal().string();
 }
@@ -403,6 +404,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
 }
 
 Scene load_scene(const std::string& path, const Scene& base) {
+    if (is_generated(path)) return generated_scene(path, base);  // "pile:100", "cloud:2500": made, not read
     return parse_scene(read_text_file(path, kMaxSceneBytes, "scene file"), path, base);
 }
 
@@ -533,7 +535,7 @@ void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite
     // Store mesh paths relative to the scene's folder, so a folder of presets can move.
     Scene saved = scene;
     const auto relative = [&](std::string& mesh) {
-        if (mesh.empty()) return;
+        if (mesh.empty() || is_generated(mesh)) return;
         std::error_code error;
         const fs::path to = fs::proximate(fs::absolute(mesh, error), fs::absolute(folder, error), error);
         if (!error && !to.empty()) mesh = to.string();

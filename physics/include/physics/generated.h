@@ -1,0 +1,33 @@
+// Bodies and scenes made from a short name instead of a file, one place for all of them, so
+// that what the bench measures, what the tests build and what the app opens can be the same:
+//
+//   cloud:N     N particles spread uniformly through a ball 1 m across (fixed seed), no faces:
+//               a mesh (--mesh cloud:2500) or a scene of that one soft body (--scene cloud:2500,
+//               with auto_substeps on)
+//   ball:S      an icosphere 1 m across: the icosahedron with each triangle split in four S
+//               times (S = 0 to 6; 10 * 4^S + 2 particles), a mesh or a scene as cloud:N is
+//   pile:N      a scene of N rigid bodies (boxes, spheres, cylinders and icosahedra, ball:0,
+//               by turns, in layers) dropped into a fixed bin that grows with N
+//   A+B         the scenes A and B together: pile:100+cloud:1000 is the bench's mixed scene
+//
+// A name is generated when it has this form; any other text is a file path.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "physics/mesh.h"
+#include "physics/scene_io.h"
+
+namespace softbody {
+
+// True for "cloud:N", "ball:S", "pile:N" and sums of them: a name, not a file.
+bool is_generated(std::string_view name);
+
+// The mesh a name makes ("cloud:N", "ball:S"); InputError for a count out of range or a scene-only name.
+Mesh generated_mesh(std::string_view name);
+
+// The scene a name makes, over `base` (its world keys); InputError as above.
+Scene generated_scene(std::string_view name, const Scene& base = {});
+
+}  // namespace softbody

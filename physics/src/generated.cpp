@@ -1,0 +1,169 @@
+#include "physics/generated.h"
+
+#include <charconv>
+#include <cmath>
+#include <random>
+
+#include "physics/error.h"
+#include "physics/mesh.h"
+#include "physics/shape_meshes.h"
+
+namespace softbody {
+
+namespace {
+
+constexpr std::size_t kMaxCloud = 400000;  // the most particles a mesh may have
+constexpr std::size_t kMaxPile = 5000;
+
+struct Part {
+    std::string_view kind, count;
+};
+
+// "kind:N" -> {kind, N}; empty kind when it is not of that form.
+Part split(std::string_view part) {
+    const auto colon = part.find(':');
+    if (colon == std::string_view::npos) return {};
+    const std::string_view kind = part.substr(0, colon);
+    if (kind != "cloud" && kind != "ball" && kind != "pile") return {};
+    return {kind, part.substr(colon + 1)};
+}
+
+std::size_t count_of(std::string_view name, const Part& part, std::size_t most) {
+    std::size_t n = 0;
+    const char* end = part.count.data() + part.count.size();
+    const auto [at, error] = std::from_chars(part.count.data(), end, n);
+    if (error != std::errc() || at != end || part.count.empty()) {
+        throw InputError(std::string(name) + ": '" + std::string(part.count) + "' is not a whole number (write " +
+                         std::string(part.kind) + ":N)");
+    }
+    if (n < 1 || n > most) {
+        throw InputError(std::string(name) + ": " + std::string(part.kind) + " takes 1 to " + std::to_string(most) +
+                         ", not " + std::to_string(n));
+    }
+    return n;
+}
+
+int subdivisions_of(std::string_view name, const Part& part) {
+    if (part.count.size() != 1 || part.count[0] < '0' || part.count[0] > '6') {
+        throw InputError(std::string(name) + ": ball takes 0 to 6 subdivisions (10 * 4^S + 2 particles)");
+    }
+    return part.count[0] - '0';
+}
+
+Mesh cloud(std::size_t n) {
+    std::mt19937 rng(20240601u + static_cast<unsigned>(n));
+    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    RawMesh raw;
+    while (raw.positions.size() < n) {
+        const Vec3 p{u(rng), u(rng), u(rng)};
+        if (dot(p, p) <= 0.25f) raw.positions.push_back(p);
+    }
+    return build_mesh(raw, "cloud:" + std::to_string(n));
+}
+
+// N bodies in layers of a square grid over a fixed bin, each turned at random (fixed seed):
+// boxes, spheres, cylinders and mesh bodies (icosahedra) in turn.
+void pile(std::size_t n, Scene& scene) {
+    const std::size_t side = std::max<std::size_t>(3, std::size_t(std::ceil(std::sqrt(double(n) / 2.0))));
+    const double pitch = 0.3, half = 0.5 * pitch * double(side) + 0.1;
+    const auto wall = [&](const char* name, Vec3d at, Vec3d size) {
+        RigidBodyDef def;
+        def.name = name;
+        def.shape = ShapeKind::Box;
+        def.size = size;
+        def.fixed = true;
+        def.position = at;
+        scene.rigid_bodies.push_back(def);
+    };
+    wall("pile_wall_n", {0.0, half + 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
+    wall("pile_wall_s", {0.0, -half - 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
+    wall("pile_wall_e", {half + 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    wall("pile_wall_w", {-half - 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    std::mt19937 rng(50u);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t layer = i / (side * side), row = (i / side) % side, column = i % side;
+        RigidBodyDef def;
+        def.name = "pile" + std::to_string(i + 1);
+        def.position = Vec3d{(double(column) - 0.5 * double(side - 1)) * pitch, (double(row) - 0.5 * double(side - 1)) * pitch,
+                             0.7 + 0.35 * double(layer)};
+        def.orientation = Quat::from_degrees_xyz({360.0 * unit(rng), 90.0 * unit(rng), 360.0 * unit(rng)});
+        def.density = 300.0 + 500.0 * unit(rng);
+        switch (i % 4) {
+            case 0:
+                def.shape = ShapeKind::Box;
+                def.size = {0.12 + 0.1 * unit(rng), 0.12 + 0.1 * unit(rng), 0.08 + 0.1 * unit(rng)};
+                break;
+            case 1:
+                def.shape = ShapeKind::Sphere;
+                def.radius = 0.06 + 0.05 * unit(rng);
+                break;
+            case 2:
+                def.shape = ShapeKind::Cylinder;
+                def.radius = 0.05 + 0.04 * unit(rng);
+                def.height = 0.12 + 0.1 * unit(rng);
+                break;
+            default:
+                // A mesh body: an icosahedron 0.25 m across.
+                def.shape = ShapeKind::Mesh;
+                def.mesh = "ball:0";
+                def.scale = 0.25;
+                break;
+        }
+        scene.rigid_bodies.push_back(def);
+    }
+}
+
+}  // namespace
+
+bool is_generated(std::string_view name) {
+    if (name.empty()) return false;
+    std::size_t start = 0;
+    while (start <= name.size()) {
+        const std::size_t plus = name.find('+', start);
+        const std::string_view part = name.substr(start, plus == std::string_view::npos ? std::string_view::npos : plus - start);
+        if (split(part).kind.empty()) return false;
+        if (plus == std::string_view::npos) return true;
+        start = plus + 1;
+    }
+    return false;
+}
+
+Mesh generated_mesh(std::string_view name) {
+    const Part part = split(name);
+    if (part.kind == "cloud") return cloud(count_of(name, part, kMaxCloud));
+    if (part.kind == "ball") {
+        Mesh mesh = sphere_mesh(0.5, subdivisions_of(name, part));
+        mesh.source = std::string(name);
+        return mesh;
+    }
+    throw InputError(std::string(name) + ": not a mesh (a mesh is cloud:N or ball:S; pile:N is a scene: use --scene)");
+}
+
+Scene generated_scene(std::string_view name, const Scene& base) {
+    Scene scene = base;
+    std::size_t start = 0;
+    bool soft = false;
+    for (;;) {
+        const std::size_t plus = name.find('+', start);
+        const std::string_view text = name.substr(start, plus == std::string_view::npos ? std::string_view::npos : plus - start);
+        const Part part = split(text);
+        if (part.kind == "cloud" || part.kind == "ball") {
+            if (soft) throw InputError(std::string(name) + ": one cloud or ball at most (it is the scene's soft body)");
+            soft = true;
+            if (part.kind == "cloud") count_of(name, part, kMaxCloud);
+            else subdivisions_of(name, part);
+            scene.params.mesh = std::string(text);
+            scene.params.auto_substeps = true;
+        } else if (part.kind == "pile") {
+            pile(count_of(name, part, kMaxPile), scene);
+        } else {
+            throw InputError(std::string(name) + ": '" + std::string(text) + "' is not cloud:N, ball:S or pile:N");
+        }
+        if (plus == std::string_view::npos) break;
+        start = plus + 1;
+    }
+    return scene;
+}
+
+}  // namespace softbody

@@ -1,0 +1,78 @@
+// Bodies and scenes made from a name (physics/generated.h): what each name makes, the same
+// every time, and a clear refusal for a name that makes nothing.
+#include "physics/generated.h"
+#include "test_support.h"
+
+namespace softbody::test {
+namespace {
+
+TEST(Generated, NamesAreToldApartFromPaths) {
+    EXPECT_TRUE(is_generated("cloud:5"));
+    EXPECT_TRUE(is_generated("ball:3"));
+    EXPECT_TRUE(is_generated("pile:100+cloud:1000"));
+    EXPECT_FALSE(is_generated("assets/meshes/cube.obj"));
+    EXPECT_FALSE(is_generated("cloud"));
+    EXPECT_FALSE(is_generated("mesh:4"));
+    EXPECT_FALSE(is_generated("pile:3+my.obj"));
+    EXPECT_FALSE(is_generated(""));
+}
+
+TEST(Generated, CloudHasNParticlesInsideABallAndIsTheSameEachTime) {
+    const Mesh a = load_mesh("cloud:700"), b = generated_mesh("cloud:700");
+    ASSERT_EQ(a.particle_count(), 700u);
+    EXPECT_EQ(a.triangle_count(), 0u);
+    for (std::size_t i = 0; i < a.positions.size(); ++i) {
+        EXPECT_LE(length(a.positions[i]), 0.5f);
+        EXPECT_EQ(a.positions[i], b.positions[i]);
+    }
+}
+
+TEST(Generated, BallHasTenFourToTheSPlusTwoParticlesOnItsSphere) {
+    for (int s = 0; s <= 3; ++s) {
+        const Mesh ball = load_mesh("ball:" + std::to_string(s));
+        EXPECT_EQ(ball.particle_count(), std::size_t(10 * (1 << (2 * s)) + 2));
+        EXPECT_EQ(ball.triangle_count(), std::size_t(20 * (1 << (2 * s))));
+        for (const Vec3& p : ball.positions) EXPECT_NEAR(length(p), 0.5f, 1e-6f);
+    }
+}
+
+TEST(Generated, PileIsNBodiesInABinAndAddsUpWithACloud) {
+    const Scene pile = load_scene("pile:30");
+    ASSERT_EQ(pile.rigid_bodies.size(), 30u + 4u);  // and the bin's four walls
+    std::size_t fixed = 0;
+    for (const RigidBodyDef& body : pile.rigid_bodies) fixed += body.fixed;
+    EXPECT_EQ(fixed, 4u);
+    EXPECT_TRUE(pile.params.mesh.empty());
+    const Scene mixed = load_scene("pile:30+cloud:200");
+    EXPECT_EQ(mixed.rigid_bodies.size(), 34u);
+    EXPECT_EQ(mixed.params.mesh, "cloud:200");
+    EXPECT_TRUE(mixed.params.auto_substeps);
+    // It builds and runs: every body falls into the bin and none leaves it.
+    World world(make_world_def(mixed));
+    world.run(100);
+    ASSERT_EQ(world.status(), Status::Ok);
+    for (std::size_t b = 4; b < world.rigid_body_count(); ++b) {
+        const Vec3d x = world.rigid_motion(b).x;
+        EXPECT_LT(std::max(std::abs(x.x), std::abs(x.y)), 0.7) << world.rigid_body(b).name;
+        EXPECT_GT(x.z, 0.0) << world.rigid_body(b).name;
+    }
+}
+
+TEST(Generated, BadNamesAreRefusedWithWhatTheyTake) {
+    const auto message = [](const std::string& name) {
+        try {
+            load_scene(name);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(message("pile:x"), "pile:x: 'x' is not a whole number (write pile:N)");
+    EXPECT_EQ(message("pile:0"), "pile:0: pile takes 1 to 5000, not 0");
+    EXPECT_EQ(message("ball:9"), "ball:9: ball takes 0 to 6 subdivisions (10 * 4^S + 2 particles)");
+    EXPECT_EQ(message("cloud:3+ball:1"), "cloud:3+ball:1: one cloud or ball at most (it is the scene's soft body)");
+    EXPECT_THROW(load_mesh("pile:3"), InputError);  // a scene, not a mesh
+}
+
+}  // namespace
+}  // namespace softbody::test
