@@ -56,6 +56,7 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
     if (raw.positions.empty()) throw InputError(source + ": the mesh has no vertices");
     Mesh mesh;
     mesh.source = source;
+    mesh.warnings = raw.warnings;
 
     // --- Weld: one particle per distinct position -------------------------------------------
     Vec3 lo = raw.positions[0], hi = raw.positions[0];

@@ -30,9 +30,12 @@ struct Corner {
 // What a file holds, before welding. Faces are already triangulated (3 corners each).
 struct RawMesh {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;
+    std::vector<Vec3> normals;  // a file normal that is not a finite number is kept as (0, 0, 0)
     std::vector<std::array<float, 2>> uvs;
     std::vector<Corner> triangle_corners;
+    // What the file got wrong that does not touch the positions and was set aside (one line
+    // each, naming the file and line): for whoever shows them. The library never prints.
+    std::vector<std::string> warnings;
 };
 
 // One vertex the GPU draws. Several render vertices may share a particle (UV seams, hard
@@ -51,6 +54,7 @@ struct Mesh {
     std::vector<std::uint32_t> triangles;             // 3 render-vertex indices each
     std::uint32_t normal_slot_count = 0;
     bool has_uvs = false;
+    std::vector<std::string> warnings;                // the RawMesh's, passed on
 
     std::size_t particle_count() const { return positions.size(); }
     std::size_t triangle_count() const { return triangles.size() / 3; }
@@ -60,6 +64,16 @@ struct Mesh {
 // Throws InputError with the file (and line) for a missing, unreadable, non-regular (a folder,
 // a pipe, a device) or malformed file, or for a mesh without usable vertices, with more than
 // kMaxParticles particles or more than kMaxTriangles triangles.
+//
+// What would put a particle in the wrong place is refused: a vertex coordinate that is not a
+// finite number, a face vertex index that names no vertex, a 4-D or binary OFF file, UTF-16
+// text. What only the drawing uses is forgiven, with one warning line per kind of fault in
+// `warnings`: a face's normal or texture-coordinate index that names none the file defines
+// (that corner goes without; normals are recomputed anyway), a normal or texture coordinate
+// that is not a finite number. Forgiven silently, as other readers do: a comment after a
+// face's indices, a face corner that ends with '/' ("1/", "1//"), a UTF-8 byte-order mark,
+// material files that are named but absent (never opened), OFF's colour, normal and texture
+// columns (COFF, NOFF, STOFF...), and an OFF file without its optional "OFF" keyword.
 Mesh load_mesh(const std::string& path);
 
 // The parsers on their own (used by load_mesh, the tests and the fuzzers). Polygons are split
@@ -72,7 +86,7 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin);
 
 // Welds coincident positions (within 1e-6 of the bounding-box diagonal) into one particle,
 // keeping first-seen order, and builds render vertices and normal slots. Triangles that
-// collapse onto fewer than three particles are dropped.
+// collapse onto fewer than three particles are dropped. The RawMesh's warnings are passed on.
 Mesh build_mesh(const RawMesh& raw, const std::string& source);
 
 }  // namespace softbody
