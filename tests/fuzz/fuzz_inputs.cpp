@@ -146,7 +146,7 @@ void check_obj_view(std::string_view text, const RawMesh& raw) {
 // bounding-box diagonal), in first-seen order; triangles on three distinct particles.
 void check_mesh(const RawMesh& raw, const Mesh& mesh) {
     const std::size_t n = mesh.particle_count();
-    expect(n >= 1 && n <= kMaxParticles, "1 to kMaxParticles particles");
+    expect(n >= 1 && n <= kMaxMeshParticles, "1 to kMaxMeshParticles particles");
     expect(mesh.vertex_to_particle.size() == raw.positions.size(), "a particle for every file vertex");
 
     Vec3 lo = raw.positions[0], hi = raw.positions[0];

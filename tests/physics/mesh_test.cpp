@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "generated_meshes.h"
 #include "physics/error.h"
 #include "test_support.h"
 
@@ -363,19 +364,76 @@ TEST(Leniency, OffVariantsLoadAsThePlainFile) {
     EXPECT_REFUSED_NAMING(load_mesh(dir.write("what.off", "XOFF\n3 1 0\n")), "what.off:1:", "'XOFF'");
 }
 
+// --- Bodies as users bring them (generated_meshes.h) -------------------------------------------
+
+// The extent of a mesh along each axis.
+Vec3 extent(const Mesh& mesh) {
+    Vec3 lo = mesh.positions[0], hi = lo;
+    for (const Vec3& p : mesh.positions) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    return hi - lo;
+}
+
+// A standing figure (a capsule 1.8 m tall, 0.5 m across) in millimetres written y-up, in
+// kilometres written z-up, and with normal indices that name nothing: each loads, with its
+// size in its own units and its height along its own up axis (the loader changes neither:
+// scale and rotation are parameters), and only the dangling normals give a warning. Sizes to
+// 1e-6 relative: the text holds 9 significant digits and the extent is a float difference.
+TEST(GeneratedMeshes, EachLoadsInItsUnitsAndUpAxis) {
+    TempDir dir;
+    struct Case {
+        std::string name, text;
+        UpAxis up;
+        double unit;  // metres per mesh unit
+        std::size_t warnings;
+    };
+    const std::vector<Case> cases = {
+        {"figure_mm_yup.obj", to_obj(scaled(capsule(0.25, 1.8, UpAxis::Y), 1000.0)), UpAxis::Y, 0.001, 0},
+        {"figure_km_zup.off", to_off(scaled(capsule(0.25, 1.8, UpAxis::Z), 0.001)), UpAxis::Z, 1000.0, 0},
+        {"figure_km_yup.obj", to_obj(scaled(capsule(0.25, 1.8, UpAxis::Y), 0.001)), UpAxis::Y, 1000.0, 0},
+        {"figure_dangling.obj", to_obj(scaled(capsule(0.25, 1.8, UpAxis::Z), 1000.0), {.dangling_normals = true}),
+         UpAxis::Z, 0.001, 1},
+    };
+    for (const Case& c : cases) {
+        const Mesh mesh = load_mesh(dir.write(c.name, c.text));
+        EXPECT_EQ(mesh.particle_count(), 24u * 23u + 2u) << c.name;  // 23 rings of 24, two poles
+        EXPECT_EQ(mesh.warnings.size(), c.warnings) << c.name;
+        const Vec3 size = extent(mesh);
+        const double height = c.up == UpAxis::Y ? size.y : size.z;
+        const double across = c.up == UpAxis::Y ? size.z : size.y;
+        EXPECT_NEAR(height * c.unit, 1.8, 1.8e-6) << c.name;
+        EXPECT_NEAR(size.x * c.unit, 0.5, 0.5e-6) << c.name;
+        EXPECT_LT(across * c.unit, 0.5 * (1 + 1e-6)) << c.name;  // 24 segments: 0.5 cos(7.5 deg) one way
+        EXPECT_GT(height, 3.0 * std::max(double(size.x), across)) << c.name << ": the up axis is the tallest";
+    }
+    // The dangling normals do not move a particle: the same positions as the plain file.
+    EXPECT_EQ(load_mesh(dir.file("figure_dangling.obj")).positions,
+              load_mesh(dir.write("plain.obj", to_obj(scaled(capsule(0.25, 1.8, UpAxis::Z), 1000.0)))).positions);
+    // Above a particle budget: a 12,000-vertex torus, as OBJ and as OFF, welded to no fewer.
+    const PolyMesh ring = torus(1.0, 0.3, 120, 100);
+    EXPECT_EQ(load_mesh(dir.write("torus.obj", to_obj(ring))).particle_count(), 12000u);
+    EXPECT_EQ(load_mesh(dir.write("torus.off", to_off(ring))).particle_count(), 12000u);
+}
+
+// More distinct vertices than kMaxMeshParticles are refused (more than kMaxParticles load: the
+// simulation reduces them, mesh_reduce.h).
 TEST(LoadMesh, TooManyParticlesIsRefused) {
     TempDir dir;
     auto grid = [](std::size_t n) {
         std::string text;
         for (std::size_t i = 0; i < n; ++i) {
-            text += "v " + std::to_string(i % 200) + " " + std::to_string(i / 200) + " 0\n";
+            text += "v " + std::to_string(i % 1000) + " " + std::to_string(i / 1000) + " 0\n";
         }
         return text;
     };
-    EXPECT_EQ(load_mesh(dir.write("max.obj", grid(kMaxParticles))).particle_count(), kMaxParticles);
-    EXPECT_REFUSED_NAMING(load_mesh(dir.write("over.obj", grid(kMaxParticles + 1))), "over.obj", "20000");
-    // Duplicates do not count: 20,001 vertices that weld to 20,000 particles are fine.
-    EXPECT_EQ(load_mesh(dir.write("dup.obj", grid(kMaxParticles) + "v 0 0 0\n")).particle_count(), kMaxParticles);
+    // The most, plus one more vertex that welds to an existing particle: duplicates do not count.
+    EXPECT_EQ(load_mesh(dir.write("max.obj", grid(kMaxMeshParticles) + "v 0 0 0\n")).particle_count(), kMaxMeshParticles);
+    EXPECT_REFUSED_NAMING(load_mesh(dir.write("over.obj", grid(kMaxMeshParticles + 1))), "over.obj",
+                          std::to_string(kMaxMeshParticles).c_str());
+    // Above kMaxParticles, below kMaxMeshParticles: loads.
+    EXPECT_EQ(load_mesh(dir.write("more.obj", grid(kMaxParticles + 1))).particle_count(), kMaxParticles + 1);
 }
 
 }  // namespace
