@@ -30,8 +30,8 @@
 //
 // How a dropped vertex is bound: to the nearest triangle of the kept particles' triangulation
 // (for a surface; triangles thinner than kMinQuality are not used), or to its nearest kept
-// particles for a point in no triangle (the nearest two and the third that makes the
-// best-shaped triangle with them). The binding is the vertex's projection onto the triangle's
+// particles for a point in no triangle (the nearest two, and of the next ten the one that
+// makes a well-shaped triangle with them and needs the smallest weights). The binding is the vertex's projection onto the triangle's
 // plane in barycentric weights, plus its signed distance along the triangle's normal: at rest
 // it gives the vertex back exactly (up to float rounding), and under any rigid motion of the
 // three particles it moves rigidly with them.

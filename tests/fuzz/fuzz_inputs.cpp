@@ -9,6 +9,7 @@
 
 #include "physics/error.h"
 #include "physics/mesh.h"
+#include "physics/mesh_reduce.h"
 #include "physics/params.h"
 #include "physics/scene_io.h"
 
@@ -194,6 +195,32 @@ void check_mesh(const RawMesh& raw, const Mesh& mesh) {
     }
 }
 
+// What mesh_reduce.h promises of reduce_mesh, for a budget of about half the particles: at most
+// the budget, a subset of the positions with maps both ways, kept particles bound to
+// themselves, every binding's particles in range and its numbers finite.
+void check_reduced(const Mesh& mesh) {
+    const std::size_t n = mesh.particle_count();
+    const std::size_t budget = std::max(kMinReducedParticles, n / 2);
+    const ReducedMesh reduced = reduce_mesh(mesh, budget);
+    expect(reduced.particle_count() <= budget, "at most the budget");
+    expect(reduced.particle_count() >= std::min(n, kMinReducedParticles), "at least a tetrahedron's worth");
+    expect(reduced.reduced_to_full.size() == reduced.particle_count() && reduced.full_to_reduced.size() == n &&
+               reduced.bindings.size() == n,
+           "one map entry and one binding per particle");
+    for (std::uint32_t r = 0; r < reduced.particle_count(); ++r) {
+        const std::uint32_t f = reduced.reduced_to_full[r];
+        expect(f < n && reduced.full_to_reduced[f] == r, "the maps agree");
+        expect(reduced.positions[r] == mesh.positions[f], "a simulated particle is a full one");
+        expect(reduced.bindings[f] == SkinBinding{{r, r, r}, {1.0f, 0.0f, 0.0f}, 0.0f}, "a kept particle binds to itself");
+    }
+    for (const SkinBinding& b : reduced.bindings) {
+        for (std::uint32_t p : b.particles) expect(p < reduced.particle_count(), "a binding's particles are in range");
+        for (float w : b.weights) expect(std::isfinite(w), "a binding's weights are finite");
+        expect(std::isfinite(b.offset), "a binding's offset is finite");
+    }
+    for (std::uint32_t p : reduced.triangles) expect(p < reduced.particle_count(), "a reduced triangle is in range");
+}
+
 // Saves the parameters as a scene file's text and reads it back.
 void expect_scene_round_trip(const Params& params) {
     std::string saved;
@@ -224,11 +251,14 @@ void mesh_input(std::string_view data) {
         }
         check_raw(raw);
         if (!off) check_obj_view(text, raw);
+        Mesh mesh;
         try {
-            const Mesh mesh = build_mesh(raw, "fuzz");
-            check_mesh(raw, mesh);
+            mesh = build_mesh(raw, "fuzz");
         } catch (const InputError&) {
+            continue;
         }
+        check_mesh(raw, mesh);
+        check_reduced(mesh);  // an InputError here is a broken promise: the budget is valid
     }
 }
 

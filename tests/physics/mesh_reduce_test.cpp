@@ -18,7 +18,12 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<float>::epsilon();
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define SOFTBODY_TEST_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || defined(SOFTBODY_TEST_SANITIZED)
 constexpr double kSlowdown = 10.0;  // sanitizer builds run this code several times slower
 #else
 constexpr double kSlowdown = 1.0;
