@@ -4,6 +4,11 @@
 // corners (and drops parts of a polygon that crosses itself). So the file is checked here
 // first, tinyobjloader reads the numbers and hands over each face whole, and the faces are
 // split into triangles here, in linear time.
+//
+// The check refuses what would put a particle in the wrong place and forgives what only the
+// drawing uses (mesh.h lists both). Where the reader would misread a forgiven fault (a comment
+// after a face's indices, an index that names no normal), the reader is handed a copy of the
+// text with that fault blanked out by spaces: same length, same lines, nothing else changed.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -38,7 +43,9 @@ public:
         TokenStart,  // OBJ: a token that starts with '#' starts a comment ("3#x" is one token)
         Anywhere,    // OFF: a '#' anywhere starts a comment
     };
-    LineReader(const std::string& text, Comments comments) : text_(text), comments_(comments) {}
+    // `start`: where reading begins (past a byte-order mark).
+    LineReader(const std::string& text, Comments comments, std::size_t start = 0)
+        : text_(text), comments_(comments), pos_(start) {}
 
     // Next line with at least one token (comments removed); false at the end.
     bool next(std::vector<std::string_view>& tokens) {
@@ -50,11 +57,11 @@ public:
             if (end < text_.size() && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') ++pos_;
             ++line_;
             raw_ = line;
-            had_comment_ = false;
+            comment_ = std::string_view::npos;
             if (comments_ == Comments::Anywhere) {
                 if (const auto hash = line.find('#'); hash != std::string_view::npos) {
                     line = line.substr(0, hash);
-                    had_comment_ = true;
+                    comment_ = offset(line) + hash;
                 }
             }
             tokens.clear();
@@ -62,7 +69,7 @@ public:
             while (i < line.size()) {
                 while (i < line.size() && is_space(line[i])) ++i;
                 if (i < line.size() && line[i] == '#' && comments_ == Comments::TokenStart) {
-                    had_comment_ = true;
+                    comment_ = offset(line) + i;
                     break;
                 }
                 const std::size_t start = i;
@@ -74,8 +81,13 @@ public:
         return false;
     }
     std::size_t line() const { return line_; }
-    bool had_comment() const { return had_comment_; }
     std::string_view raw_line() const { return raw_; }  // comment included
+    // The current line's comment as offsets into the text, [comment_begin, line_end), or
+    // comment_begin() == npos when it has none.
+    std::size_t comment_begin() const { return comment_; }
+    std::size_t line_end() const { return offset(raw_) + raw_.size(); }
+    // Where a token (a view into the text) starts in the text.
+    std::size_t offset(std::string_view part) const { return static_cast<std::size_t>(part.data() - text_.data()); }
 
 private:
     static bool is_space(char c) { return c == ' ' || c == '\t'; }
@@ -84,8 +96,18 @@ private:
     std::size_t pos_ = 0;
     std::size_t line_ = 0;
     std::string_view raw_;
-    bool had_comment_ = false;
+    std::size_t comment_ = std::string_view::npos;
 };
+
+// A byte-order mark: UTF-8's is skipped (some editors write one); UTF-16 text is refused, as
+// its every other byte is zero and no line of it would read.
+std::size_t skip_byte_order_mark(const std::string& text, const std::string& origin) {
+    auto starts = [&](std::string_view prefix) { return std::string_view(text).substr(0, prefix.size()) == prefix; };
+    if (starts("\xFE\xFF") || starts("\xFF\xFE")) {
+        throw InputError(origin + ": UTF-16 text; save the file as UTF-8 or ASCII");
+    }
+    return starts("\xEF\xBB\xBF") ? 3 : 0;
+}
 
 [[noreturn]] void malformed(const std::string& origin, std::size_t line, const std::string& what) {
     throw InputError(origin + ":" + std::to_string(line) + ": " + what);
@@ -136,73 +158,152 @@ bool to_long(std::string_view token, long long& out) {
 // stays one readable line whatever the file holds.
 std::string quoted(std::string_view token) { return "'" + printable(token, 40) + "'"; }
 
-// Checks what tinyobjloader would accept silently: numbers that are not finite numbers, face
-// indices that point at no vertex (OBJ indices are 1-based; negative ones count back from the
-// last one defined so far), and more triangles than kMaxTriangles.
-void check_obj(const std::string& text, const std::string& origin) {
-    LineReader reader(text, LineReader::Comments::TokenStart);
+// An index as written: digits with at most one sign. One too large for a long long is still a
+// whole number (out of range), not a malformed one.
+bool is_whole_number(std::string_view token) {
+    token = without_plus(token);
+    if (!token.empty() && token.front() == '-') token.remove_prefix(1);
+    return !token.empty() && std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Faults of one kind that the check forgives: the first is described, the others counted, so
+// a file gives one warning line per kind of fault however often it repeats it.
+struct Forgiven {
+    std::string first;
+    std::size_t count = 0;
+
+    void add(const std::string& origin, std::size_t line, const std::string& what) {
+        if (count++ == 0) first = origin + ":" + std::to_string(line) + ": " + what;
+    }
+    void report(std::vector<std::string>& warnings) const {
+        if (count == 0) return;
+        warnings.push_back(count == 1 ? first : first + " (" + std::to_string(count - 1) + " more like it)");
+    }
+};
+
+// What the check hands the reader and the builder.
+struct ObjCheck {
+    // The text the reader reads: empty when the file's own text will do, else a copy with the
+    // forgiven faults blanked out (same length, so the same lines).
+    std::string reader_text;
+    // Per `vn` and `vt` line, in order: whether its numbers are finite (else faces that name it
+    // go without it).
+    std::vector<bool> normal_usable, uv_usable;
+    std::vector<std::string> warnings;
+};
+
+// Checks what tinyobjloader would accept silently or misread: numbers that are not finite
+// numbers, face indices that point at no vertex (OBJ indices are 1-based; negative ones count
+// back from the last one defined so far), and more triangles than kMaxTriangles. Refuses what
+// moves or loses a particle; blanks out, for the reader, what it forgives.
+ObjCheck check_obj(const std::string& text, const std::string& origin) {
+    ObjCheck check;
+    auto blank = [&](std::size_t begin, std::size_t end) {
+        if (check.reader_text.empty()) check.reader_text = text;
+        std::fill(check.reader_text.begin() + static_cast<std::ptrdiff_t>(begin),
+                  check.reader_text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+    };
+    const std::size_t start = skip_byte_order_mark(text, origin);
+    if (start > 0) blank(0, start);
+
+    LineReader reader(text, LineReader::Comments::TokenStart, start);
     std::vector<std::string_view> tokens;
     long long counts[3] = {0, 0, 0};  // v, vt, vn seen so far
     std::size_t triangles = 0;
+    Forgiven bad_normal, bad_uv, dangling_normal, dangling_uv;
     while (reader.next(tokens)) {
         const std::string_view kind = tokens[0];
         const std::size_t line = reader.line();
+        const bool element = kind == "v" || kind == "vn" || kind == "vt" || kind == "f" || kind == "l" || kind == "p";
+        if (element && reader.comment_begin() != std::string_view::npos) {
+            // The reader would take the comment's words for numbers or indices.
+            blank(reader.comment_begin(), reader.line_end());
+        }
         if (kind == "v" || kind == "vn" || kind == "vt") {
+            const bool position = kind == "v";
             const std::size_t needed = kind == "vt" ? 1 : 3;
-            if (tokens.size() < needed + 1) {
+            // A position needs its three numbers; a `vn` or `vt` with none is not even counted
+            // by the reader, which would shift every later index.
+            if (tokens.size() < (position ? needed + 1 : 2)) {
                 malformed(origin, line, "'" + std::string(kind) + "' needs " + std::to_string(needed) + " numbers");
             }
+            std::string fault = tokens.size() < needed + 1 ? "needs " + std::to_string(needed) + " numbers" : "";
             for (std::size_t t = 1; t < tokens.size(); ++t) {
                 float value = 0.0f;
-                if (!to_float(tokens[t], value)) {
-                    malformed(origin, line, "coordinate " + quoted(tokens[t]) + " is not a finite number");
+                if (!exponent_fits_reader(tokens[t])) {
+                    if (position) malformed(origin, line, "number " + quoted(tokens[t]) + " has an exponent out of range");
+                    // The reader must not parse it; the line is unusable anyway.
+                    blank(reader.offset(tokens[t]), reader.offset(tokens[t]) + tokens[t].size());
+                    if (fault.empty()) fault = quoted(tokens[t]) + " has an exponent out of range";
+                } else if (!to_float(tokens[t], value)) {
+                    if (position) malformed(origin, line, "coordinate " + quoted(tokens[t]) + " is not a finite number");
+                    if (fault.empty()) fault = quoted(tokens[t]) + " is not a finite number";
                 }
             }
-            for (std::string_view rest = reader.raw_line(); !rest.empty();) {
-                const std::size_t start = std::min(rest.find_first_not_of(" \t"), rest.size());
-                const std::size_t end = std::min(rest.find_first_of(" \t", start), rest.size());
-                if (const auto token = rest.substr(start, end - start); !exponent_fits_reader(token)) {
-                    malformed(origin, line, "number " + quoted(token) + " has an exponent out of range");
-                }
-                rest.remove_prefix(end);
-            }
-            long long& count = counts[kind == "v" ? 0 : kind == "vt" ? 1 : 2];
+            long long& count = counts[position ? 0 : kind == "vt" ? 1 : 2];
             if (++count > static_cast<long long>(kMaxElements)) {
                 malformed(origin, line, "more than " + std::to_string(kMaxElements) + " '" + std::string(kind) +
                                             "' lines; too many for a mesh");
             }
+            if (kind == "vn") {
+                check.normal_usable.push_back(fault.empty());
+                if (!fault.empty()) bad_normal.add(origin, line, "normal " + fault + "; faces that use it get recomputed normals");
+            } else if (kind == "vt") {
+                check.uv_usable.push_back(fault.empty());
+                if (!fault.empty()) bad_uv.add(origin, line, "texture coordinate " + fault + "; faces that use it go without");
+            }
         } else if (kind == "f" || kind == "l" || kind == "p") {
             const std::size_t minimum = kind == "f" ? 3 : kind == "l" ? 2 : 1;
-            if (reader.had_comment()) {
-                // The reader would take the comment's words for indices.
-                malformed(origin, line,
-                          "a comment after a face's indices is not supported; put it on a line of its own");
-            }
             if (tokens.size() < minimum + 1) {
                 malformed(origin, line, "'" + std::string(kind) + "' needs at least " + std::to_string(minimum) + " vertices");
             }
             for (std::size_t t = 1; t < tokens.size(); ++t) {
-                if (tokens[t].back() == '/') {
-                    // The reader would take the next corner's number for the missing index.
-                    malformed(origin, line, "face corner " + quoted(tokens[t]) + " ends with '/'");
-                }
-                std::string_view rest = tokens[t];
-                for (int part = 0; part < 3 && !rest.empty(); ++part) {
+                const std::string_view corner = tokens[t];
+                std::string_view parts[3];
+                std::size_t part_count = 0;
+                for (std::string_view rest = corner;;) {
                     const auto slash = rest.find('/');
-                    const std::string_view index_text = rest.substr(0, slash);
-                    rest = slash == std::string_view::npos ? std::string_view{} : rest.substr(slash + 1);
-                    if (part == 2 && slash != std::string_view::npos) {
-                        malformed(origin, line, "face corner " + quoted(tokens[t]) + " has more than three indices");
+                    if (part_count == 3) {
+                        malformed(origin, line, "face corner " + quoted(corner) + " has more than three indices");
                     }
-                    if (index_text.empty() && part > 0) continue;  // "1//3": no texture coordinate
-                    const long long available = counts[part == 0 ? 0 : part == 1 ? 1 : 2];
+                    parts[part_count++] = rest.substr(0, slash);
+                    if (slash == std::string_view::npos) break;
+                    rest = rest.substr(slash + 1);
+                }
+                // parts[0]: the vertex (refused when it names none); [1] the texture
+                // coordinate, [2] the normal (dropped when they name none).
+                static const char* names[] = {"vertex", "texture coordinate", "normal"};
+                bool keep[3] = {true, false, false};
+                for (std::size_t part = 0; part < part_count; ++part) {
+                    const std::string_view index_text = parts[part];
+                    if (index_text.empty() && part > 0) continue;  // "1//3": no texture coordinate; "1/": none either
+                    const long long available = counts[part];
                     long long index = 0;
-                    if (!to_long(index_text, index) || index == 0 || index > available || index < -available) {
-                        static const char* names[] = {"vertex", "texture coordinate", "normal"};
-                        malformed(origin, line, "face " + std::string(names[part]) + " index " + quoted(index_text) +
-                                                    " does not refer to one of the " + std::to_string(available) +
-                                                    " defined so far");
+                    const bool whole = is_whole_number(index_text);
+                    const bool valid = whole && to_long(index_text, index) && index != 0 && index <= available &&
+                                       index >= -available;
+                    const std::string what = "face " + std::string(names[part]) + " index " + quoted(index_text) +
+                                             " does not refer to one of the " + std::to_string(available) + " defined so far";
+                    if (part == 0 || !whole) {
+                        if (!valid) malformed(origin, line, what);
+                    } else if (!valid) {
+                        (part == 1 ? dangling_uv : dangling_normal)
+                            .add(origin, line, what + (part == 1 ? "; those corners go without" : "; normals are recomputed"));
+                        continue;
                     }
+                    keep[part] = true;
+                }
+                // What the reader is to see: the corner without what was dropped and without a
+                // trailing '/' (the reader would take the next corner's number for the index
+                // that '/' announces), blanked to the same length.
+                std::string canonical(parts[0]);
+                if (keep[1]) canonical += "/" + std::string(parts[1]);
+                if (keep[2]) canonical += (keep[1] ? "/" : "//") + std::string(parts[2]);
+                if (canonical.size() != corner.size()) {
+                    if (check.reader_text.empty()) check.reader_text = text;
+                    const std::size_t at = reader.offset(corner);
+                    check.reader_text.replace(at, canonical.size(), canonical);
+                    blank(at + canonical.size(), at + corner.size());
                 }
             }
             if (kind == "f") {
@@ -214,6 +315,11 @@ void check_obj(const std::string& text, const std::string& origin) {
             }
         }
     }
+    dangling_normal.report(check.warnings);
+    bad_normal.report(check.warnings);
+    dangling_uv.report(check.warnings);
+    bad_uv.report(check.warnings);
+    return check;
 }
 
 // Lets the OBJ reader read a string in place, without a copy of a file that may be large.
@@ -230,6 +336,7 @@ public:
 struct ObjBuilder {
     RawMesh raw;
     std::string error;
+    const ObjCheck* check = nullptr;
 
     void fail(const std::string& what) {
         if (error.empty()) error = what;
@@ -256,6 +363,10 @@ struct ObjBuilder {
             if (corner.position < 0 || corner.uv < -1 || corner.normal < -1) {
                 return fail("a face index does not refer to a vertex, texture coordinate or normal");
             }
+            // A normal or texture coordinate whose numbers are not finite: the corner goes
+            // without (the check has warned).
+            if (corner.uv >= 0 && !usable(check->uv_usable, corner.uv)) corner.uv = -1;
+            if (corner.normal >= 0 && !usable(check->normal_usable, corner.normal)) corner.normal = -1;
             corners.push_back(corner);
         }
         if (raw.triangle_corners.size() / 3 + corners.size() - 2 > kMaxTriangles) {
@@ -286,6 +397,10 @@ struct ObjBuilder {
         for (std::size_t c = 1; c + 1 < corners.size(); ++c) triangle(0, c, c + 1);  // a fan
     }
 
+    static bool usable(const std::vector<bool>& flags, std::int32_t index) {
+        return static_cast<std::size_t>(index) < flags.size() && flags[static_cast<std::size_t>(index)];
+    }
+
 private:
     std::vector<Corner> corners;  // kept between faces: no allocation per face
 };
@@ -293,29 +408,33 @@ private:
 }  // namespace
 
 RawMesh parse_obj_text(const std::string& text, const std::string& origin) {
-    check_obj(text, origin);
+    const ObjCheck check = check_obj(text, origin);
 
     tinyobj::callback_t callback;
     callback.vertex_cb = [](void* user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
         static_cast<ObjBuilder*>(user)->raw.positions.push_back({x, y, z});
     };
     callback.normal_cb = [](void* user, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) {
+        // One that the check found unusable is kept as (0, 0, 0), so later indices still match.
         auto* builder = static_cast<ObjBuilder*>(user);
         const Vec3 n{x, y, z};
-        if (!is_finite(n)) builder->fail("a normal is not finite");
-        builder->raw.normals.push_back(n);
+        const bool ok = is_finite(n) && ObjBuilder::usable(builder->check->normal_usable,
+                                                           static_cast<std::int32_t>(builder->raw.normals.size()));
+        builder->raw.normals.push_back(ok ? n : Vec3{});
     };
     callback.texcoord_cb = [](void* user, tinyobj::real_t u, tinyobj::real_t v, tinyobj::real_t) {
         auto* builder = static_cast<ObjBuilder*>(user);
-        if (!std::isfinite(u) || !std::isfinite(v)) builder->fail("a texture coordinate is not finite");
-        builder->raw.uvs.push_back({u, v});
+        const bool ok = std::isfinite(u) && std::isfinite(v) &&
+                        ObjBuilder::usable(builder->check->uv_usable, static_cast<std::int32_t>(builder->raw.uvs.size()));
+        builder->raw.uvs.push_back(ok ? std::array<float, 2>{u, v} : std::array<float, 2>{0.0f, 0.0f});
     };
     callback.index_cb = [](void* user, tinyobj::index_t* indices, int count) {
         static_cast<ObjBuilder*>(user)->add_face(indices, count);
     };
 
     ObjBuilder builder;
-    TextBuffer buffer(text);
+    builder.check = &check;
+    TextBuffer buffer(check.reader_text.empty() ? text : check.reader_text);
     std::istream in(&buffer);
     std::string warnings, errors;
     // No material reader: `mtllib` lines are skipped, and no other file is ever opened.
@@ -329,18 +448,39 @@ RawMesh parse_obj_text(const std::string& text, const std::string& origin) {
     for (const Vec3& p : builder.raw.positions) {
         if (!is_finite(p)) throw InputError(origin + ": malformed OBJ: a vertex coordinate is not finite");
     }
+    builder.raw.warnings = check.warnings;
     return std::move(builder.raw);
 }
 
 RawMesh parse_off_text(const std::string& text, const std::string& origin) {
-    LineReader reader(text, LineReader::Comments::Anywhere);
+    LineReader reader(text, LineReader::Comments::Anywhere, skip_byte_order_mark(text, origin));
     std::vector<std::string_view> tokens;
     if (!reader.next(tokens)) throw InputError(origin + ": empty file; expected an OFF header");
 
-    // Header: "OFF" (or COFF/NOFF/...), then "vertices faces edges", possibly on the same line.
+    // Header: the keyword [ST][C][N][4][n]OFF, then "vertices faces edges", possibly on the same
+    // line. The keyword is optional (many old files lack it): a file may open with the counts.
+    // Texture coordinates (ST), colours (C) and normals (N) follow a vertex's x y z on its
+    // line and are ignored, as are a face's colour numbers after its indices. A fourth
+    // coordinate (4: homogeneous or 4-D, n: any dimension) would move every particle, and a
+    // binary file is not text: both refused.
     std::size_t first = 0;
     const std::string_view magic = tokens[0];
-    if (magic.size() >= 3 && magic.substr(magic.size() - 3) == "OFF") {
+    long long ignored = 0;
+    if (to_long(magic, ignored)) {
+        first = 0;  // no keyword: the counts
+    } else if (magic.size() >= 3 && magic.substr(magic.size() - 3) == "OFF") {
+        std::string_view prefix = magic.substr(0, magic.size() - 3);
+        for (const std::string_view known : {"ST", "C", "N"}) {
+            if (prefix.substr(0, known.size()) == known) prefix.remove_prefix(known.size());
+        }
+        if (!prefix.empty() && (prefix.front() == '4' || prefix.front() == 'n')) {
+            malformed(origin, reader.line(), quoted(magic) + ": vertices with more than three coordinates (4-D, "
+                                             "homogeneous or n-D OFF) are not supported");
+        }
+        if (!prefix.empty()) malformed(origin, reader.line(), "unknown OFF variant " + quoted(magic));
+        if (tokens.size() > 1 && tokens[1] == "BINARY") {
+            malformed(origin, reader.line(), "binary OFF is not supported; save the file as text OFF");
+        }
         first = 1;
     } else {
         malformed(origin, reader.line(), "expected 'OFF' at the start of the file");

@@ -56,6 +56,7 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
     if (raw.positions.empty()) throw InputError(source + ": the mesh has no vertices");
     Mesh mesh;
     mesh.source = source;
+    mesh.warnings = raw.warnings;
 
     // --- Weld: one particle per distinct position -------------------------------------------
     Vec3 lo = raw.positions[0], hi = raw.positions[0];
@@ -92,10 +93,9 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
         }
         if (found < 0) {
             found = static_cast<std::int64_t>(mesh.positions.size());
-            if (mesh.positions.size() >= kMaxParticles) {
-                throw InputError(source + ": more than " + std::to_string(kMaxParticles) +
-                                 " distinct vertices; all-pairs springs (N(N-1)/2 per force evaluation) "
-                                 "cannot run at that size: use a smaller or decimated mesh");
+            if (mesh.positions.size() >= kMaxMeshParticles) {
+                throw InputError(source + ": more than " + std::to_string(kMaxMeshParticles) +
+                                 " distinct vertices; too many to load: use a smaller or decimated mesh");
             }
             mesh.positions.push_back(p);
             grid[cell].push_back(static_cast<std::uint32_t>(found));

@@ -1,6 +1,7 @@
 #include "fuzz_inputs.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "physics/error.h"
 #include "physics/mesh.h"
+#include "physics/mesh_reduce.h"
 #include "physics/params.h"
 #include "physics/scene_io.h"
 
@@ -40,17 +42,37 @@ void check_raw(const RawMesh& raw) {
 }
 
 // The OBJ file as its own check reads it (lines end at \n, \r\n or \r; tokens split at spaces
-// and tabs; a token that starts with '#' ends the line), which parse_obj_text's result must
-// match: the same vertices, and each face's triangles on that face's own corners (a reader
-// that took one token for another would show here).
+// and tabs; a token that starts with '#' ends the line; a UTF-8 byte-order mark is skipped),
+// which parse_obj_text's result must match: the same vertices, and each face's triangles on
+// that face's own corners (a reader that took one token for another would show here). What
+// the loader forgives shows as -1: a texture-coordinate or normal index that names none defined
+// so far, or names one whose numbers are not all finite (or that lacks some).
 struct ObjView {
     std::size_t counts[3] = {0, 0, 0};  // v, vt, vn
+    std::vector<bool> usable[3];        // per vt and vn line ([1], [2])
     std::vector<std::vector<Corner>> faces;
 };
 
+// A number the loader takes: the whole token (one leading '+' allowed), finite as a float, and
+// an exponent of at most six digits after its leading zeros (the OBJ reader's own parser
+// overflows on longer ones, so the loader never lets it read them).
+bool finite_number(std::string_view token) {
+    if (token.size() >= 2 && token[0] == '+' && token[1] != '+' && token[1] != '-') token.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || ec != std::errc() || end != token.data() + token.size()) return false;
+    if (!std::isfinite(static_cast<float>(value))) return false;
+    const std::size_t e = token.find_first_of("eE");
+    if (e == std::string_view::npos) return true;
+    std::string_view exponent = token.substr(e + 1);
+    if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) exponent.remove_prefix(1);
+    while (!exponent.empty() && exponent[0] == '0') exponent.remove_prefix(1);
+    return exponent.size() <= 6;
+}
+
 ObjView view_obj(std::string_view text) {
     ObjView view;
-    std::size_t pos = 0;
+    std::size_t pos = text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
     while (pos < text.size()) {
         std::size_t end = pos;
         while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
@@ -67,8 +89,13 @@ ObjView view_obj(std::string_view text) {
         }
         if (tokens.empty()) continue;
         if (tokens[0] == "v") ++view.counts[0];
-        if (tokens[0] == "vt") ++view.counts[1];
-        if (tokens[0] == "vn") ++view.counts[2];
+        for (const int kind : {1, 2}) {
+            if (tokens[0] != (kind == 1 ? "vt" : "vn")) continue;
+            ++view.counts[kind];
+            bool usable = tokens.size() >= (kind == 1 ? 2u : 4u);
+            for (std::size_t t = 1; t < tokens.size(); ++t) usable = usable && finite_number(tokens[t]);
+            view.usable[kind].push_back(usable);
+        }
         if (tokens[0] != "f") continue;
         std::vector<Corner> face;
         for (std::size_t t = 1; t < tokens.size(); ++t) {
@@ -76,12 +103,18 @@ ObjView view_obj(std::string_view text) {
             std::string_view rest = tokens[t];
             for (int part = 0; part < 3 && !rest.empty(); ++part) {
                 const std::size_t slash = std::min(rest.find('/'), rest.size());
-                const std::string number(rest.substr(0, slash));
+                const std::string_view number = rest.substr(0, slash);
                 rest = slash < rest.size() ? rest.substr(slash + 1) : std::string_view{};
                 if (number.empty()) continue;
-                const long long i = std::stoll(number);  // the check accepted it: a whole number in range
+                // The check accepted it: a whole number; a vertex's is in range, another's may not be.
+                long long i = 0;
+                const std::string_view digits = number[0] == '+' ? number.substr(1) : number;
+                const auto ec = std::from_chars(digits.data(), digits.data() + digits.size(), i).ec;
                 const long long n = static_cast<long long>(view.counts[part]);
-                index[part] = static_cast<std::int32_t>(i > 0 ? i - 1 : n + i);
+                if (ec != std::errc() || i == 0 || i > n || i < -n) continue;
+                const long long resolved = i > 0 ? i - 1 : n + i;
+                if (part > 0 && !view.usable[part][static_cast<std::size_t>(resolved)]) continue;
+                index[part] = static_cast<std::int32_t>(resolved);
             }
             face.push_back({index[0], index[2], index[1]});
         }
@@ -114,7 +147,7 @@ void check_obj_view(std::string_view text, const RawMesh& raw) {
 // bounding-box diagonal), in first-seen order; triangles on three distinct particles.
 void check_mesh(const RawMesh& raw, const Mesh& mesh) {
     const std::size_t n = mesh.particle_count();
-    expect(n >= 1 && n <= kMaxParticles, "1 to kMaxParticles particles");
+    expect(n >= 1 && n <= kMaxMeshParticles, "1 to kMaxMeshParticles particles");
     expect(mesh.vertex_to_particle.size() == raw.positions.size(), "a particle for every file vertex");
 
     Vec3 lo = raw.positions[0], hi = raw.positions[0];
@@ -162,6 +195,32 @@ void check_mesh(const RawMesh& raw, const Mesh& mesh) {
     }
 }
 
+// What mesh_reduce.h promises of reduce_mesh, for a budget of about half the particles: at most
+// the budget, a subset of the positions with maps both ways, kept particles bound to
+// themselves, every binding's particles in range and its numbers finite.
+void check_reduced(const Mesh& mesh) {
+    const std::size_t n = mesh.particle_count();
+    const std::size_t budget = std::max(kMinReducedParticles, n / 2);
+    const ReducedMesh reduced = reduce_mesh(mesh, budget);
+    expect(reduced.particle_count() <= budget, "at most the budget");
+    expect(reduced.particle_count() >= std::min(n, kMinReducedParticles), "at least a tetrahedron's worth");
+    expect(reduced.reduced_to_full.size() == reduced.particle_count() && reduced.full_to_reduced.size() == n &&
+               reduced.bindings.size() == n,
+           "one map entry and one binding per particle");
+    for (std::uint32_t r = 0; r < reduced.particle_count(); ++r) {
+        const std::uint32_t f = reduced.reduced_to_full[r];
+        expect(f < n && reduced.full_to_reduced[f] == r, "the maps agree");
+        expect(reduced.positions[r] == mesh.positions[f], "a simulated particle is a full one");
+        expect(reduced.bindings[f] == SkinBinding{{r, r, r}, {1.0f, 0.0f, 0.0f}, 0.0f}, "a kept particle binds to itself");
+    }
+    for (const SkinBinding& b : reduced.bindings) {
+        for (std::uint32_t p : b.particles) expect(p < reduced.particle_count(), "a binding's particles are in range");
+        for (float w : b.weights) expect(std::isfinite(w), "a binding's weights are finite");
+        expect(std::isfinite(b.offset), "a binding's offset is finite");
+    }
+    for (std::uint32_t p : reduced.triangles) expect(p < reduced.particle_count(), "a reduced triangle is in range");
+}
+
 // Saves the scene as a scene file's text and reads it back.
 void expect_scene_round_trip(const Scene& scene) {
     std::string saved;
@@ -192,11 +251,14 @@ void mesh_input(std::string_view data) {
         }
         check_raw(raw);
         if (!off) check_obj_view(text, raw);
+        Mesh mesh;
         try {
-            const Mesh mesh = build_mesh(raw, "fuzz");
-            check_mesh(raw, mesh);
+            mesh = build_mesh(raw, "fuzz");
         } catch (const InputError&) {
+            continue;
         }
+        check_mesh(raw, mesh);
+        check_reduced(mesh);  // an InputError here is a broken promise: the budget is valid
     }
 }
 
