@@ -18,6 +18,12 @@ inline render::Vec3Span span_of(const Vec3Array& a) { return {a.x.data(), a.y.da
 inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f) {
     render::BodyView view;
     view.mesh = &body.mesh;
+    if (body.reduced) {
+        // Simulated on fewer particles than the mesh has: the mesh drawn by skinning.
+        view.mesh = &body.particle_mesh;
+        view.surface = &body.mesh;
+        view.skin = body.skin;
+    }
     view.positions = span_of(body.x);
     view.previous_positions = span_of(body.x_tick_prev);
     view.alpha = alpha;

@@ -74,7 +74,12 @@ Scene SceneOptions::resolve() const {
     Scene resolved;
     if (!scene.empty()) resolved = load_scene(scene);
     else if (mesh.empty()) resolved = load_scene(default_scene_path());
-    if (!mesh.empty()) resolved.params.mesh = mesh;
+    if (!mesh.empty()) {
+        // A mesh brought on the command line: sized and stood up automatically (the scene's
+        // keys were for its own mesh); --set scale, up_axis or rotation overrides.
+        resolved.params.mesh = mesh;
+        fit_brought_mesh(resolved.params);
+    }
     for (const auto& [key, value] : sets) set_scene_key(resolved, key, value);
     if (resolved.empty()) {
         throw InputError("nothing to simulate: give --mesh FILE, or a scene file with a \"mesh\", \"soft_bodies\" or "

@@ -127,13 +127,15 @@ int simulate_command(int argc, char** argv) {
     const bool ok = world.status() == Status::Ok;
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016" PRIx64, world.state_hash());
-    std::size_t particles = 0, springs = 0;
+    std::size_t particles = 0, springs = 0, vertices = 0;
     for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
         particles += world.soft_body(b).particle_count();
         springs += world.soft_body(b).spring_count();
+        vertices += world.soft_body(b).mesh.vertex_to_particle.size();
     }
     nlohmann::ordered_json out = {
         {"mesh", params.mesh},
+        {"vertices", vertices},
         {"particles", particles},
         {"springs", springs},
         {"ticks", world.ticks()},
@@ -153,6 +155,7 @@ int simulate_command(int argc, char** argv) {
         {"status", ok ? "ok" : "diverged"},
         {"state_hash", hash},
     };
+    if (world.soft_body_count() > 0) out["soft_bodies"] = soft_bodies_json(world);
     if (world.rigid_body_count() > 0) out["rigid_bodies"] = rigid_bodies_json(world);
     out["momentum"] = vec_json(world.momentum());
     out["angular_momentum"] = vec_json(world.angular_momentum());

@@ -1,5 +1,5 @@
 // The JSON that describes a world's bodies, shared by `softbody simulate`'s summary and the
-// app's: one entry per rigid body, with the fields README.md lists.
+// app's: one entry per body, with the fields README.md lists.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -17,5 +17,10 @@ nlohmann::ordered_json rigid_body_json(const World& world, std::size_t b);
 
 // Every rigid body's entry, in order.
 nlohmann::ordered_json rigid_bodies_json(const World& world);
+
+// Every soft body's entry: name, mesh, vertices (in the file), mesh_particles (its distinct
+// positions), particles (simulated: fewer when above max_particles), scale (used; "auto" sizes
+// it), scale_auto, up_axis.
+nlohmann::ordered_json soft_bodies_json(const World& world);
 
 }  // namespace softbody::app

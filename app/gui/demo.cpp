@@ -79,6 +79,7 @@ bool Demo::load_mesh_file(const std::string& path) {
     Scene scene = this->scene();
     scene.params.mesh = path;
     scene.params.pinned.clear();  // vertex numbers of another mesh mean nothing here
+    fit_brought_mesh(scene.params);  // sized and stood up: the last mesh's scale is not this one's
     if (!load(scene)) return false;
     source_ = path;
     return true;
@@ -374,12 +375,9 @@ void Demo::toggle_pin(std::uint32_t particle) {
     // Pins are kept as vertex numbers in the params, so they survive a reset and a saved preset.
     const bool pin = !world_->is_pinned(particle);
     Params params = world_->params();
-    const auto& map = world_->mesh().vertex_to_particle;
-    std::erase_if(params.pinned, [&](std::uint32_t v) { return map[v] == particle; });
-    if (pin) {
-        const auto vertex = std::find(map.begin(), map.end(), particle) - map.begin();
-        params.pinned.push_back(static_cast<std::uint32_t>(vertex));
-    }
+    const SoftBody& body = world_->body();
+    std::erase_if(params.pinned, [&](std::uint32_t v) { return particle_of_vertex(body, v) == particle; });
+    if (pin) params.pinned.push_back(vertex_of_particle(body, particle));
     world_->set_params(params);
     scene_.params.pinned = params.pinned;
     world_->set_pinned(particle, pin);

@@ -250,10 +250,29 @@ void Panels::parameters(Demo& demo) {
         bool edited = false;
         const SliderRange* range = slider_range(key);
         const ImGuiSliderFlags flags = range && range->logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
+        // A key with a word for 0 ("auto" scale, "all" particles): a checkbox for the word, and
+        // the slider for a number when it is off.
+        if (!info.zero_word.empty()) {
+            bool word = param_text(params, key) == info.zero_word;
+            const std::string box = std::string(info.zero_word) + "##" + key;
+            if (ImGui::Checkbox(box.c_str(), &word)) {
+                set_param(params, key, word ? std::string(info.zero_word) : param_text(defaults, key) == info.zero_word
+                                                                          ? (info.type == ParamType::Int ? "3000" : "1")
+                                                                          : param_text(defaults, key));
+                edited = true;
+            }
+            tooltip(info);
+            ImGui::SameLine();
+            if (word) {
+                ImGui::TextUnformatted(label.c_str());
+                changed |= edited;
+                continue;
+            }
+        }
         switch (info.type) {
             case ParamType::Float: {
                 float value = std::stof(param_text(params, key));
-                edited = ImGui::SliderFloat(label.c_str(), &value, range->min, range->max, "%.4g", flags);
+                edited |= ImGui::SliderFloat(label.c_str(), &value, range->min, range->max, "%.4g", flags);
                 if (edited) {
                     const double lowest = info.min_exclusive ? info.min + 1e-6 : info.min;
                     char text[32];
@@ -265,8 +284,22 @@ void Panels::parameters(Demo& demo) {
             case ParamType::Int: {
                 int value = std::stoi(param_text(params, key));
                 const int lowest = static_cast<int>(info.min);
-                edited = ImGui::SliderInt(label.c_str(), &value, lowest, key == "renormalize_every" ? 50 : 64);
+                const int highest = key == "renormalize_every" ? 50 : key == "max_particles" ? int(info.max) : 64;
+                const ImGuiSliderFlags int_flags = key == "max_particles" ? ImGuiSliderFlags_Logarithmic : 0;
+                edited |= ImGui::SliderInt(label.c_str(), &value, lowest, highest, "%d", int_flags);
                 if (edited) set_param(params, key, std::to_string(std::max(lowest, value)));
+                break;
+            }
+            case ParamType::Axis: {
+                static constexpr const char* kAxes[] = {"x", "y", "z", "-x", "-y", "-z"};
+                int current = 2;
+                for (int a = 0; a < 6; ++a) {
+                    if (params.up_axis == kAxes[a]) current = a;
+                }
+                if (ImGui::Combo(label.c_str(), &current, "x\0y\0z\0-x\0-y\0-z\0")) {
+                    set_param(params, key, kAxes[current]);
+                    edited = true;
+                }
                 break;
             }
             case ParamType::Bool: {

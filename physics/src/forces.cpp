@@ -13,17 +13,36 @@ void add_gravity(Vec3Array& force, float m, const Vec3& g) {
     for (std::size_t i = 0; i < force.size(); ++i) force.add(i, weight);
 }
 
-void add_drag(Vec3Array& force, const ParticleState& s, std::size_t n, float rho, float C_D, float rest_radius) {
-    double vx = 0.0, vy = 0.0, vz = 0.0;
+namespace {
+
+// The backward-Euler step of dv/dt = -kappa |v| v from v* (the velocity without drag): the
+// speed s' with s' + h kappa s'^2 = |v*|, in the form that does not cancel for small h kappa.
+double implicit_drag_speed(double speed, double kappa, double h) {
+    return 2.0 * speed / (1.0 + std::sqrt(1.0 + 4.0 * h * kappa * speed));
+}
+
+}  // namespace
+
+void add_drag(Vec3Array& force, const ParticleState& s, std::size_t n, float rho, float C_D, float rest_radius, float m,
+              float h) {
+    double vx = 0.0, vy = 0.0, vz = 0.0, fx = 0.0, fy = 0.0, fz = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         vx += s.vx[i];
         vy += s.vy[i];
         vz += s.vz[i];
+        fx += force.x[i];
+        fy += force.y[i];
+        fz += force.z[i];
     }
-    const Vec3 v_com{float(vx / double(n)), float(vy / double(n)), float(vz / double(n))};
-    const float S = 3.14159265f * rest_radius * rest_radius;  // bounding sphere's cross-section
-    const Vec3 F_drag = -0.5f * rho * C_D * S * length(v_com) * v_com;
-    const Vec3 share = F_drag / static_cast<float>(n);
+    const double M = double(m) * double(n);
+    const double S = 3.14159265358979 * double(rest_radius) * double(rest_radius);  // bounding sphere's cross-section
+    const double kappa = 0.5 * double(rho) * double(C_D) * S / M;                  // Eq. 23's -1/2 rho C_D S, per kg
+    // The centre of mass's velocity after this step without drag, then with it (backward Euler).
+    const Vec3d v_star = Vec3d{vx, vy, vz} / double(n) + Vec3d{fx, fy, fz} * (double(h) / M);
+    const double speed = length(v_star);
+    if (!(speed > 0.0)) return;
+    const Vec3d v_new = v_star * (implicit_drag_speed(speed, kappa, double(h)) / speed);
+    const Vec3 share = to_float((v_new - v_star) * (M / double(h) / double(n)));
     for (std::size_t i = 0; i < n; ++i) force.add(i, share);
 }
 
@@ -45,9 +64,14 @@ void add_force_at(Wrench& w, const RigidMotion& m, const Vec3d& p, const Vec3d& 
 
 void add_rigid_gravity(Wrench& w, const RigidBody& body, const Vec3& g) { w.F += Vec3d(g) * body.mass; }
 
-void add_rigid_drag(Wrench& w, const RigidBody& body, const RigidMotion& m, float rho) {
-    // Eq. 23: F_drag = -1/2 rho C_D S |v| v.
-    w.F += m.v * (-0.5 * rho * body.drag_coefficient * body.drag_area * length(m.v));
+void add_rigid_drag(Wrench& w, const RigidBody& body, const RigidMotion& m, float rho, float h) {
+    // Eq. 23: F_drag = -1/2 rho C_D S |v| v, by backward Euler (add_drag says why).
+    const double kappa = 0.5 * rho * body.drag_coefficient * body.drag_area * body.inv_mass;
+    const Vec3d v_star = m.v + w.F * (double(h) * body.inv_mass);
+    const double speed = length(v_star);
+    if (!(speed > 0.0) || body.inv_mass == 0.0) return;
+    const Vec3d v_new = v_star * (implicit_drag_speed(speed, kappa, double(h)) / speed);
+    w.F += (v_new - v_star) * (body.mass / double(h));
 }
 
 void add_rigid_grab(Wrench& w, const RigidBody& body, const RigidMotion& m, const Grab& grab, float h) {

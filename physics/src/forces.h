@@ -25,8 +25,19 @@ void add_gravity(Vec3Array& force, float m, const Vec3& g);
 
 // Eq. 23, aerodynamic drag F = -1/2 rho C_D S |v| v, with v the centre-of-mass velocity and S
 // the cross-section of the body's bounding sphere at rest, shared among the particles in
-// proportion to mass (they share one mass): no torque.
-void add_drag(Vec3Array& force, const ParticleState& s, std::size_t n, float rho, float C_D, float rest_radius);
+// proportion to mass (they share one mass `m`): no torque.
+//
+// Integrated implicitly (backward Euler) for the centre of mass rather than explicitly: with
+// kappa = rho C_D S / (2 M) and v* the velocity the step would reach without drag (from the
+// forces already in `force`, so call it after every force but friction), the new velocity v'
+// solves v' = v* - h kappa |v'| v', which has the closed form |v'| = 2 |v*| / (1 + sqrt(1 +
+// 4 h kappa |v*|)) along v*; the force applied is M (v' - v*) / h. For a small h kappa |v|
+// (any dense or slow body) that is Eq. 23; for a large, light body, whose explicit drag would
+// reverse and grow its velocity every step (a 550 m sheet of four particles blew up in four
+// ticks), it slows it without ever reversing it: stable at any size. At terminal velocity
+// v' = v and g = kappa |v|^2 exactly, as in the continuous law.
+void add_drag(Vec3Array& force, const ParticleState& s, std::size_t n, float rho, float C_D, float rest_radius, float m,
+              float h);
 
 // The mouse's grab: a damped spring from one particle to a point. With no stiffness given, one
 // stiff enough to drag the body and soft enough to be stable on its own (h omega = 1).
@@ -44,8 +55,9 @@ void add_force_at(Wrench& w, const RigidMotion& m, const Vec3d& p, const Vec3d& 
 // Gravity acts at the centre of mass: m g, no torque.
 void add_rigid_gravity(Wrench& w, const RigidBody& body, const Vec3& g);
 
-// Eq. 23 at the centre of mass (no torque), S the cross-section of the bounding sphere.
-void add_rigid_drag(Wrench& w, const RigidBody& body, const RigidMotion& m, float rho);
+// Eq. 23 at the centre of mass (no torque), S the cross-section of the bounding sphere;
+// implicit over the step h as add_drag is (call it after the body's other forces).
+void add_rigid_drag(Wrench& w, const RigidBody& body, const RigidMotion& m, float rho, float h);
 
 // The mouse's grab on a rigid body: a damped spring from a point of the body (grab.point, body
 // axes) to grab.target, acting at that point, so it turns the body.

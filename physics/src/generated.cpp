@@ -44,8 +44,8 @@ std::size_t count_of(std::string_view name, const Part& part, std::size_t most) 
 }
 
 int subdivisions_of(std::string_view name, const Part& part) {
-    if (part.count.size() != 1 || part.count[0] < '0' || part.count[0] > '6') {
-        throw InputError(std::string(name) + ": ball takes 0 to 6 subdivisions (10 * 4^S + 2 particles)");
+    if (part.count.size() != 1 || part.count[0] < '0' || part.count[0] > '5') {
+        throw InputError(std::string(name) + ": ball takes 0 to 5 subdivisions (10 * 4^S + 2 particles)");
     }
     return part.count[0] - '0';
 }

@@ -16,8 +16,9 @@ namespace {
 // them is rejected. Where the book gives a value (Listing 8), it is the default.
 constexpr ParamInfo kTable[] = {
     {"mesh", ParamType::String, "", "", "Mesh file, OBJ or OFF: one particle per distinct vertex position", 0, 0, false, false, ParamScope::Body},
-    {"scale", ParamType::Float, "", "", "Uniform scale from mesh units to metres", 0, 1e4, true, false, ParamScope::Body},
-    {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z (a y-up file needs 90,0,0)", -360, 360, false, false, ParamScope::Body},
+    {"scale", ParamType::Float, "", "", "Uniform scale from mesh units to metres; auto: the largest side 1 m, centred", 0, 1e4, true, false, ParamScope::Body, "auto"},
+    {"up_axis", ParamType::Axis, "", "", "The file's up axis (x, y, z, -x, -y, -z), turned to point up (+z)", 0, 0, false, false, ParamScope::Body},
+    {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z, after up_axis", -360, 360, false, false, ParamScope::Body},
     {"init_height", ParamType::Float, "m", "", "Height added to every vertex's z at the start (Listing 8)", -1e4, 1e4, false, false, ParamScope::Body},
     {"initial_velocity", ParamType::Vec3, "m/s", "", "Velocity of every particle at the start", -1e3, 1e3, false, false, ParamScope::Body},
     {"particle_mass", ParamType::Float, "kg", "", "Mass m of each particle (Listing 8: 1)", 0, 1e6, true, true, ParamScope::Body},
@@ -36,6 +37,7 @@ constexpr ParamInfo kTable[] = {
     {"static_friction", ParamType::Float, "", "Eq. 24", "Static friction coefficient mu_s at the ground", 0, 2, false, true},
     {"dynamic_friction", ParamType::Float, "", "Eq. 25", "Dynamic friction coefficient mu_d at the ground", 0, 2, false, true},
     {"pinned", ParamType::IndexList, "", "", "Vertex indices (0-based, as in the file) held fixed in place", 0, 0, false, false, ParamScope::Body},
+    {"max_particles", ParamType::Int, "", "", "Particle budget: a mesh with more is simulated on this many, drawn in full; all: one per vertex", 4, 20000, false, false, ParamScope::Body, "all"},
     {"renormalize_every", ParamType::Int, "ticks", "Listing 9", "Renormalise each rigid body's quaternion every this many ticks (Listing 9: 5); 0: never, and watch |q| drift", 0, 1e6, false, true},
 };
 
@@ -52,6 +54,7 @@ struct FieldRef {
 FieldRef field(Params& p, std::string_view key) {
     if (key == "mesh") return {.s = &p.mesh};
     if (key == "scale") return {.f = &p.scale};
+    if (key == "up_axis") return {.s = &p.up_axis};
     if (key == "rotation") return {.v = &p.rotation};
     if (key == "init_height") return {.f = &p.init_height};
     if (key == "initial_velocity") return {.v = &p.initial_velocity};
@@ -71,6 +74,7 @@ FieldRef field(Params& p, std::string_view key) {
     if (key == "static_friction") return {.f = &p.static_friction};
     if (key == "dynamic_friction") return {.f = &p.dynamic_friction};
     if (key == "pinned") return {.list = &p.pinned};
+    if (key == "max_particles") return {.i = &p.max_particles};
     if (key == "renormalize_every") return {.i = &p.renormalize_every};
     return {};
 }
@@ -120,6 +124,7 @@ bool parse_int(std::string_view s, long long& out) {
 }
 
 void check_range(const ParamInfo& info, double value, std::string_view what = {}) {
+    if (value == 0.0 && !info.zero_word.empty()) return;  // the word's value ("auto", "all")
     const bool low = info.min_exclusive ? !(value > info.min) : !(value >= info.min);
     if (std::isfinite(value) && !low && value <= info.max) return;
     std::string unit;
@@ -127,6 +132,7 @@ void check_range(const ParamInfo& info, double value, std::string_view what = {}
     std::string range = info.min_exclusive
                             ? "above " + format_number(info.min) + " and at most " + format_number(info.max)
                             : "between " + format_number(info.min) + " and " + format_number(info.max);
+    if (!info.zero_word.empty()) range += ", or " + std::string(info.zero_word);
     throw InputError("parameter '" + std::string(info.key) + "'" + std::string(what) + ": must be " +
                      range + unit + ", got " + format_number(value));
 }
@@ -211,17 +217,25 @@ void set_param(Params& params, std::string_view key, std::string_view text) {
         throw InputError(message);
     }
     const FieldRef ref = field(params, key);
+    if (!info->zero_word.empty() && trim(text) == info->zero_word) {  // "auto", "all": stands for 0
+        if (ref.f) *ref.f = 0.0f;
+        if (ref.i) *ref.i = 0;
+        return;
+    }
+    const auto expected = [&](std::string what) {
+        return info->zero_word.empty() ? what : what + " or " + std::string(info->zero_word);
+    };
     switch (info->type) {
         case ParamType::Float: {
             float value = 0.0f;
-            if (!parse_float(text, value)) bad_value(key, "expected a finite number", text);
+            if (!parse_float(text, value)) bad_value(key, expected("expected a finite number"), text);
             check_range(*info, value);
             *ref.f = value;
             break;
         }
         case ParamType::Int: {
             long long value = 0;
-            if (!parse_int(text, value)) bad_value(key, "expected a whole number", text);
+            if (!parse_int(text, value)) bad_value(key, expected("expected a whole number"), text);
             check_range(*info, static_cast<double>(value));
             *ref.i = static_cast<int>(value);
             break;
@@ -250,6 +264,14 @@ void set_param(Params& params, std::string_view key, std::string_view text) {
             if (trim(text).empty()) bad_value(key, "expected a file path", text);
             *ref.s = std::string(trim(text));
             break;
+        case ParamType::Axis: {
+            const std::string_view t = trim(text);
+            if (t != "x" && t != "y" && t != "z" && t != "-x" && t != "-y" && t != "-z") {
+                bad_value(key, "expected x, y, z, -x, -y or -z", text);
+            }
+            *ref.s = std::string(t);
+            break;
+        }
         case ParamType::Integrator: {
             auto value = integrator_from_string(trim(text));
             if (!value) bad_value(key, "expected verlet, symplectic_euler, explicit_euler or rk4", text);
@@ -275,6 +297,9 @@ void set_param(Params& params, std::string_view key, std::string_view text) {
 
 std::string param_text(const Params& params, std::string_view key) {
     const FieldRef ref = field(const_cast<Params&>(params), key);
+    if (const ParamInfo* info = find_param(key); info && !info->zero_word.empty()) {
+        if ((ref.f && *ref.f == 0.0f) || (ref.i && *ref.i == 0)) return std::string(info->zero_word);
+    }
     if (ref.f) return format_number(*ref.f);
     if (ref.i) return std::to_string(*ref.i);
     if (ref.b) return *ref.b ? "true" : "false";

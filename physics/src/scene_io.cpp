@@ -48,9 +48,11 @@ std::string type_name(const json& value) {
 // The command-line text for a JSON value of the key's type (set_param then checks the range).
 std::string value_text(const ParamInfo& info, const json& value) {
     auto fail = [&](const char* expected) -> std::string {
-        throw InputError("parameter '" + std::string(info.key) + "': expected " + expected + ", got " +
+        throw InputError("parameter '" + std::string(info.key) + "': expected " + expected +
+                         (info.zero_word.empty() ? "" : " or \"" + std::string(info.zero_word) + "\"") + ", got " +
                          type_name(value));
     };
+    if (!info.zero_word.empty() && value.is_string() && value.get<std::string>() == info.zero_word) return std::string(info.zero_word);
     auto number = [](const json& v) {
         std::ostringstream out;
         out.precision(9);
@@ -75,6 +77,7 @@ std::string value_text(const ParamInfo& info, const json& value) {
             return number(value[0]) + "," + number(value[1]) + "," + number(value[2]);
         case ParamType::String:
         case ParamType::Integrator:
+        case ParamType::Axis:
             if (!value.is_string()) return fail("a string");
             return value.get<std::string>();
         case ParamType::IndexList: {
@@ -93,6 +96,7 @@ std::string value_text(const ParamInfo& info, const json& value) {
 
 json value_json(const Params& params, const ParamInfo& info) {
     const std::string text = param_text(params, info.key);
+    if (!info.zero_word.empty() && text == info.zero_word) return json(text);
     switch (info.type) {
         case ParamType::Float: return json(std::stod(text));
         case ParamType::Int: return json(std::stoll(text));
@@ -104,10 +108,20 @@ json value_json(const Params& params, const ParamInfo& info) {
             return v;
         }
         case ParamType::String:
-        case ParamType::Integrator: return json(text);
+        case ParamType::Integrator:
+        case ParamType::Axis: return json(text);
         case ParamType::IndexList: return json(params.pinned);
     }
     return {};
+}
+
+// A body's mesh without the keys that say how big it is and which way is up: fitted
+// (fit_brought_mesh), each part only where the file says nothing of it.
+void fit_unless_given(const json& keys, Params& params) {
+    Params fitted = params;
+    fit_brought_mesh(fitted);
+    if (!keys.contains("scale")) params.scale = fitted.scale;
+    if (!keys.contains("rotation") && !keys.contains("up_axis")) params.up_axis = fitted.up_axis;
 }
 
 [[noreturn]] void io_error(const std::string& path, const std::string& what) {
@@ -344,7 +358,10 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
             throw InputError(where(origin, text, key) + ": " + e.what());
         }
     }
-    if (root.contains("mesh")) params.mesh = relative_to(origin, params.mesh);
+    if (root.contains("mesh")) {
+        params.mesh = relative_to(origin, params.mesh);
+        fit_unless_given(root, params);
+    }
 
     if (root.contains("soft_bodies")) {
         scene.soft_bodies.clear();
@@ -372,6 +389,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
             }
             if (body.params.mesh.empty()) throw InputError(line + ": soft body '" + printable(body.name) + "' needs a \"mesh\"");
             body.params.mesh = relative_to(origin, body.params.mesh);
+            fit_unless_given(element, body.params);
             scene.soft_bodies.push_back(std::move(body));
         }
     }
@@ -401,6 +419,12 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
                          "' (the soft body of the flat keys is 'body'); names must be unique");
     }
     return scene;
+}
+
+void fit_brought_mesh(Params& params) {
+    params.scale = 0.0f;  // "auto"
+    params.up_axis = "y";
+    params.rotation = {};
 }
 
 Scene load_scene(const std::string& path, const Scene& base) {

@@ -69,6 +69,8 @@ World::World(WorldDef def, WorldOptions options)
     link_torque_on_rigid_.assign(rigid_.size(), {});
     link_force_on_particles_.assign(soft_.size(), {});
     build();
+    // What the loader set aside in each mesh file (a dangling normal index, ...): one line each.
+    for (const SoftBody& body : soft_) notes_.insert(notes_.end(), body.mesh.warnings.begin(), body.mesh.warnings.end());
     resolve_links(def.springs);
     update_substeps();  // the links' springs count toward the step's stability
 }
@@ -136,7 +138,7 @@ void World::resolve_links(const std::vector<SpringDef>& springs) {
                 }
                 out.kind = LinkEnd::Kind::Soft;
                 out.body = std::uint32_t(b);
-                out.particle = map[std::size_t(*end.vertex)];
+                out.particle = particle_of_vertex(soft_[b], std::uint32_t(*end.vertex));
                 return out;
             }
             throw InputError(where + ": there is no body named '" + printable(end.body) + "'");
@@ -267,12 +269,13 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         else body.kernel->compute(in, body.force);
 
         add_gravity(body.force, body.mass, params_.gravity);
-        if (body.params.drag_coefficient > 0.0f && params_.air_density > 0.0f) {
-            add_drag(body.force, s, n, params_.air_density, body.params.drag_coefficient, body.rest_radius);
-        }
         if (grab_ && !grab_->rigid && grab_->body == b && grab_->particle < n) add_grab(body.force, s, *grab_, body.mass, h);
         if (!links_.empty()) {
             for (const auto& [particle, F] : link_force_on_particles_[b]) body.force.add(particle, F);
+        }
+        // Drag after every other force but friction: its implicit step needs them (forces.h).
+        if (body.params.drag_coefficient > 0.0f && params_.air_density > 0.0f) {
+            add_drag(body.force, s, n, params_.air_density, body.params.drag_coefficient, body.rest_radius, body.mass, h);
         }
         // Friction last: Eq. 24 and 25 need everything else that pushes the particle.
         apply_ground_friction(body, s, params_, record_contacts);
@@ -293,12 +296,12 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         if (!body.fixed) {
             const RigidMotion m = softbody::rigid_motion(body, state);
             add_rigid_gravity(w, body, params_.gravity);
-            if (body.drag_coefficient > 0.0f && params_.air_density > 0.0f) add_rigid_drag(w, body, m, params_.air_density);
             if (grab_ && grab_->rigid && grab_->body == b) add_rigid_grab(w, body, m, *grab_, h);
             if (!links_.empty()) {
                 w.F += link_force_on_rigid_[b];
                 w.tau += link_torque_on_rigid_[b];
             }
+            if (body.drag_coefficient > 0.0f && params_.air_density > 0.0f) add_rigid_drag(w, body, m, params_.air_density, h);
         }
         rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
     }

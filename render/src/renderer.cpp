@@ -86,6 +86,8 @@ struct MeshGpu {
 struct SoftDraw {
     MeshGpu gpu;
     std::vector<glm::vec3> particles;
+    std::vector<float> sx, sy, sz, fx, fy, fz;  // skinning: simulated particles in, full ones out
+    std::vector<glm::vec3> full;                // a reduced body's full-resolution particles
     DeformedSurface surface;
     BodyShape shape;
     bool has_surface = false;
@@ -331,16 +333,35 @@ void Renderer::State::prepare_soft(const Frame& frame) {
         SoftDraw& d = soft[b];
         interpolate_positions(view, frame.debug.body_offset, d.particles);
         d.shape = measure_body(d.particles, view.rest_positions);
-        d.has_surface = view.mesh && view.mesh->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
+        const Mesh* drawn = view.surface && !view.skin.empty() ? view.surface : view.mesh;
+        d.has_surface = drawn && drawn->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
                         look.body != BodyStyle::Wireframe;
-        if (d.has_surface) d.surface.update(*view.mesh, d.particles, frame.debug.flip_normals);
+        if (!d.has_surface) continue;
+        if (drawn == view.mesh) {
+            d.surface.update(*view.mesh, d.particles, frame.debug.flip_normals);
+            continue;
+        }
+        // A reduced body: every particle of the full mesh from the three simulated ones it follows.
+        const std::size_t n = d.particles.size(), full = view.skin.size();
+        for (auto* v : {&d.sx, &d.sy, &d.sz}) v->resize(n);
+        for (auto* v : {&d.fx, &d.fy, &d.fz}) v->resize(full);
+        for (std::size_t i = 0; i < n; ++i) {
+            d.sx[i] = d.particles[i].x;
+            d.sy[i] = d.particles[i].y;
+            d.sz[i] = d.particles[i].z;
+        }
+        apply_skinning(view.skin, d.sx.data(), d.sy.data(), d.sz.data(), d.fx.data(), d.fy.data(), d.fz.data());
+        d.full.resize(full);
+        for (std::size_t i = 0; i < full; ++i) d.full[i] = {d.fx[i], d.fy[i], d.fz[i]};
+        d.surface.update(*drawn, d.full, frame.debug.flip_normals);
     }
     timings.surface_ms = ms_since(start);
     const auto upload_start = Clock::now();
     for (std::size_t b = 0; b < soft.size(); ++b) {
         SoftDraw& d = soft[b];
         if (!d.has_surface) continue;
-        d.gpu.upload_topology(*frame.soft_bodies[b].mesh);
+        const BodyView& view = frame.soft_bodies[b];
+        d.gpu.upload_topology(view.surface && !view.skin.empty() ? *view.surface : *view.mesh);
         const auto& vertices = d.surface.vertices();
         gl::stream(GL_ARRAY_BUFFER, d.gpu.vbo.id(), vertices.data(), static_cast<GLsizeiptr>(vertices.size() * sizeof(SurfaceVertex)));
     }

@@ -69,7 +69,7 @@ TEST(Generated, BadNamesAreRefusedWithWhatTheyTake) {
     };
     EXPECT_EQ(message("pile:x"), "pile:x: 'x' is not a whole number (write pile:N)");
     EXPECT_EQ(message("pile:0"), "pile:0: pile takes 1 to 5000, not 0");
-    EXPECT_EQ(message("ball:9"), "ball:9: ball takes 0 to 6 subdivisions (10 * 4^S + 2 particles)");
+    EXPECT_EQ(message("ball:9"), "ball:9: ball takes 0 to 5 subdivisions (10 * 4^S + 2 particles)");
     EXPECT_EQ(message("cloud:3+ball:1"), "cloud:3+ball:1: one cloud or ball at most (it is the scene's soft body)");
     EXPECT_THROW(load_mesh("pile:3"), InputError);  // a scene, not a mesh
 }

@@ -22,6 +22,30 @@ TEST(Params, DefaultsAreListing8s) {
     EXPECT_EQ(p.gravity, (Vec3{0.0f, 0.0f, -9.81f}));
     EXPECT_EQ(p.integrator, Integrator::Verlet);
     EXPECT_NO_THROW(validate(p));
+    // Where the project departs from Listing 8's literal loop, for a user's first run: substeps
+    // enough for stability, a particle budget, and the file's axes and units kept (a mesh brought
+    // without keys is fitted by fit_brought_mesh, not by these defaults).
+    EXPECT_TRUE(p.auto_substeps);
+    EXPECT_EQ(p.max_particles, 3000);
+    EXPECT_EQ(p.scale, 1.0f);
+    EXPECT_EQ(p.up_axis, "z");
+}
+
+TEST(Params, WordsStandForZeroAndAxesAreChecked) {
+    Params p;
+    set_param(p, "scale", "auto");
+    EXPECT_EQ(p.scale, 0.0f);
+    EXPECT_EQ(param_text(p, "scale"), "auto");
+    set_param(p, "max_particles", "all");
+    EXPECT_EQ(p.max_particles, 0);
+    EXPECT_EQ(param_text(p, "max_particles"), "all");
+    EXPECT_NO_THROW(validate(p));
+    EXPECT_REFUSED_NAMING(set_param(p, "max_particles", "3"), "'max_particles'", "between 4 and 20000", "or all");
+    EXPECT_REFUSED_NAMING(set_param(p, "scale", "big"), "'scale'", "or auto");
+    set_param(p, "up_axis", "-x");
+    EXPECT_EQ(p.up_axis, "-x");
+    EXPECT_REFUSED_NAMING(set_param(p, "up_axis", "w"), "'up_axis'", "x, y, z, -x, -y or -z");
+    EXPECT_EQ(p.up_axis, "-x");
 }
 
 TEST(Params, UnknownKeyIsNamedWithAHint) {

@@ -291,8 +291,8 @@ TEST(Links, SpringAtAPointTurnsTheBodyWithTauOverJ) {
     // A rod 1 m long along x, 1 kg: J about y is m (a^2 + c^2) / 12 with a = 1, c = 0.02.
     // Its end (0.5, 0, 0) is pulled toward (0.5, 0, 1) by k (l - l0) = 10 N upward (l0 = 0).
     World world = world_of(
-        "{\"gravity\": [0, 0, 0], \"ground\": false, \"integrator\": \"explicit_euler\", \"rigid_bodies\": [{\"name\": "
-        "\"rod\", \"shape\": \"box\", \"size\": [1, 0.02, 0.02], \"mass\": 1}], \"springs\": [{\"a\": {\"point\": "
+        "{\"gravity\": [0, 0, 0], \"ground\": false, \"integrator\": \"explicit_euler\", \"auto_substeps\": false,"
+        " \"rigid_bodies\": [{\"name\": \"rod\", \"shape\": \"box\", \"size\": [1, 0.02, 0.02], \"mass\": 1}], \"springs\": [{\"a\": {\"point\": "
         "[0.5, 0, 1]}, \"b\": {\"body\": \"rod\", \"point\": [0.5, 0, 0]}, \"stiffness\": 10, \"rest_length\": 0}]}");
     world.tick();
     // Explicit Euler: L after one step is exactly h tau, tau = r x F = (0.5, 0, 0) x (0, 0, 10).
@@ -318,7 +318,7 @@ TEST(Links, StiffSpringCountsInTheStabilityEstimateAndDivergesWithTheMessage) {
                         " \"position\": [0.6, 0, 0]}], \"springs\": [{\"a\": {\"point\": [0, 0, 0]}, \"b\": {\"body\": \"b\"},"
                         " \"stiffness\": 10000, \"rest_length\": 0.5}]}");
     };
-    World fixed_step = with("");
+    World fixed_step = with("\"auto_substeps\": false,");
     const Stability s = fixed_step.stability();
     EXPECT_NEAR(s.omega_max, std::sqrt(1e4 / 0.1), 1e-9);
     EXPECT_FALSE(s.stable);

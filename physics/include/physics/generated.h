@@ -5,7 +5,7 @@
 //               a mesh (--mesh cloud:2500) or a scene of that one soft body (--scene cloud:2500,
 //               with auto_substeps on)
 //   ball:S      an icosphere 1 m across: the icosahedron with each triangle split in four S
-//               times (S = 0 to 6; 10 * 4^S + 2 particles), a mesh or a scene as cloud:N is
+//               times (S = 0 to 5; 10 * 4^S + 2 particles), a mesh or a scene as cloud:N is
 //   pile:N      a scene of N rigid bodies (boxes, spheres, cylinders and icosahedra, ball:0,
 //               by turns, in layers) dropped into a fixed bin that grows with N
 //   A+B         the scenes A and B together: pile:100+cloud:1000 is the bench's mixed scene

@@ -25,9 +25,10 @@ std::string_view to_string(Integrator integrator);
 std::optional<Integrator> integrator_from_string(std::string_view name);
 
 struct Params {
-    std::string mesh;                          // OBJ or OFF file
-    float scale = 1.0f;                        // mesh units -> metres
-    Vec3 rotation{0.0f, 0.0f, 0.0f};           // degrees about x, then y, then z (y-up files: 90,0,0)
+    std::string mesh;                          // OBJ or OFF file (or a generated name, generated.h)
+    float scale = 1.0f;                        // mesh units -> metres; 0: automatic ("auto", see soft_body.h)
+    std::string up_axis = "z";                 // the file's up axis, turned to +z: x, y, z, -x, -y or -z
+    Vec3 rotation{0.0f, 0.0f, 0.0f};           // degrees about x, then y, then z, after up_axis
     float init_height = 2.0f;                  // m added to every vertex's z (Listing 8)
     Vec3 initial_velocity{0.0f, 0.0f, 0.0f};   // m/s, every particle
     float particle_mass = 1.0f;                // kg per particle (Listing 8)
@@ -36,7 +37,7 @@ struct Params {
     Vec3 gravity{0.0f, 0.0f, -9.81f};          // m/s^2, z is up
     float dt = 0.02f;                          // s, the fixed tick
     int substeps = 1;                          // steps of dt/substeps within one tick
-    bool auto_substeps = false;                // pick the fewest substeps that stay stable
+    bool auto_substeps = true;                 // pick the fewest substeps that stay stable (Listing 8: false)
     Integrator integrator = Integrator::Verlet;
     float drag_coefficient = 0.3f;             // C_D (Eq. 23)
     float air_density = 1.2f;                  // rho, kg/m^3 (Eq. 23)
@@ -46,12 +47,13 @@ struct Params {
     float static_friction = 0.6f;              // mu_s (Eq. 24)
     float dynamic_friction = 0.4f;             // mu_d (Eq. 25)
     std::vector<std::uint32_t> pinned;         // vertex indices (0-based, as in the file)
+    int max_particles = 3000;                  // particle budget: a larger mesh is simulated on this many; 0: all
     int renormalize_every = 5;                 // ticks between renormalising quaternions (Listing 9); 0: never
 
     bool operator==(const Params&) const = default;
 };
 
-enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList };
+enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList, Axis };
 
 // Whose key it is: the world's (dt, gravity, the ground, ...), or a soft body's (its mesh,
 // mass, springs, ...). A scene file's flat keys hold both: the world's and those of the soft
@@ -70,6 +72,7 @@ struct ParamInfo {
     bool min_exclusive = false;
     bool live = true;           // false: takes effect on reset (it changes the particles)
     ParamScope scope = ParamScope::World;
+    std::string_view zero_word = {};  // a word that stands for 0, outside the range: "auto", "all"
 };
 std::span<const ParamInfo> param_table();
 const ParamInfo* find_param(std::string_view key);

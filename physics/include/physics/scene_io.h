@@ -38,8 +38,15 @@ struct Scene {
     bool empty() const { return params.mesh.empty() && soft_bodies.empty() && rigid_bodies.empty(); }
 };
 
+// A mesh brought with no keys about its size or axes (`--mesh FILE`, a file dropped on the
+// window, a scene file's mesh without "scale", "rotation" or "up_axis"): sized automatically
+// (scale "auto": its largest side 1 m, centred) and stood up (+y up, as most exporters write).
+void fit_brought_mesh(Params& params);
+
 // Reads a scene file over `base` (keys not in the file keep base's values; arrays in the file
-// replace base's). Mesh paths are taken relative to the scene file's folder. Throws InputError
+// replace base's). Mesh paths are taken relative to the scene file's folder. A soft body whose
+// "mesh" comes without "scale" is sized automatically, and without "rotation" or "up_axis" is
+// stood up (+y up), as fit_brought_mesh says. Throws InputError
 // with file and line, naming the key (and the body).
 Scene load_scene(const std::string& path, const Scene& base = {});
 

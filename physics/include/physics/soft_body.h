@@ -18,6 +18,7 @@
 
 #include "physics/arrays.h"
 #include "physics/mesh.h"
+#include "physics/mesh_reduce.h"
 #include "physics/pair_forces.h"
 #include "physics/params.h"
 
@@ -36,7 +37,20 @@ struct ParticleContact {
 struct SoftBody {
     std::string name = "body";  // the scene's flat keys make the body named "body"
     Params params;              // this body's keys (ParamScope::Body in params.h); world keys unused
-    Mesh mesh;
+    Mesh mesh;                  // as loaded: what is drawn; vertex numbers (pins, springs) are its
+
+    // Above the particle budget (params.max_particles) the body is simulated on a subset of the
+    // mesh's particles (mesh_reduce.h), and every particle of `mesh` follows three of them:
+    // `reduced` says which, `skin` is its bindings with offsets in metres (scaled as the body
+    // is), `particle_mesh` the simulated particles as a mesh (for overlays). Null and empty when
+    // every particle of `mesh` is simulated.
+    std::shared_ptr<const ReducedMesh> reduced;
+    std::size_t reduced_budget = 0;   // the budget `reduced` was made for
+    std::vector<SkinBinding> skin;
+    Mesh particle_mesh;
+    // What build_particles did with the file's units and axes.
+    float scale_used = 1.0f;          // file units to metres (params.scale, or the automatic one)
+    Vec3 file_centre;                 // subtracted before turning, when sized automatically
 
     // Topology (fixed): rest positions.
     Vec3Array rest;
@@ -67,10 +81,21 @@ struct SoftBody {
     bool is_pinned(std::uint32_t particle) const { return inv_mass[particle] == 0.0f; }
 };
 
-// Listing 8: one particle per distinct vertex of body.mesh, turned by `rotation`, scaled by
-// `scale` and lifted by `init_height`, at rest, all moving at `initial_velocity`, pinned where
-// `pinned` says. Resets the whole state.
+// Listing 8: one particle per distinct vertex of body.mesh (or, above max_particles, per
+// particle the reduction keeps), turned so the file's `up_axis` points up (+z), then by
+// `rotation`, scaled by `scale` and lifted by `init_height`, at rest, all moving at
+// `initial_velocity`, pinned where `pinned` says. Resets the whole state.
+//
+// With `scale` automatic (0, "auto"), the mesh is centred (its bounding box's centre at the
+// origin) and scaled so that its largest side is 1 m; a mesh of one point keeps scale 1.
+// Throws InputError when the budget cannot hold the mesh (max_particles below 4).
 void build_particles(SoftBody& body);
+
+// The simulated particle a vertex of body.mesh moves with: its own, or, when the body is
+// reduced and the vertex's particle was dropped, the one of its three it follows most.
+std::uint32_t particle_of_vertex(const SoftBody& body, std::uint32_t vertex);
+// The first vertex of body.mesh at a simulated particle (for saving a pin as a vertex number).
+std::uint32_t vertex_of_particle(const SoftBody& body, std::uint32_t particle);
 
 // Pins or frees one particle; a pinned particle has 1/m = 0 and stays where it is.
 void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned);

@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "physics/mesh.h"
+#include "physics/mesh_reduce.h"
 #include "render/camera.h"
 
 namespace softbody::render {
@@ -33,6 +34,11 @@ struct Vec3Span {
 // A soft body as it is this frame. Only mesh and positions are required.
 struct BodyView {
     const Mesh* mesh = nullptr;    // topology: render vertices, normal slots, triangles
+    // A body simulated on fewer particles than its mesh has (physics/mesh_reduce.h): `surface`
+    // is the full-resolution mesh drawn, each of its particles placed by `skin` from the
+    // simulated ones; `mesh` is then the simulated particles' own mesh (for the overlays).
+    const Mesh* surface = nullptr;
+    std::span<const SkinBinding> skin;
     Vec3Span positions;            // particles at the latest tick
     Vec3Span previous_positions;   // particles one tick earlier; empty: no interpolation
     float alpha = 1.0f;            // draws lerp(previous_positions, positions, alpha)
