@@ -52,7 +52,8 @@ constexpr const char* kUsage =
     "  --body      solid, ghost (see-through), wireframe or hidden (default: solid)\n"
     "  --no-pattern  a plain body, without the soft checks that show it turn\n"
     "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
-    "  --debug-offset DX,DY,DZ and --debug-flip-normals draw deliberate faults (the screenshot\n"
+    "  --debug-offset DX,DY,DZ, --debug-flip-normals and --debug-particle-mesh (a reduced body's\n"
+    "              simulated particles drawn instead of its full mesh) draw deliberate faults (the screenshot\n"
     "              tests' negative checks)";
 
 constexpr int kMinSide = 16;
@@ -265,6 +266,8 @@ int render_command(int argc, char** argv) {
             frame.debug.body_offset = parse_vec3(option, args.value(option), ',');
         } else if (option == "--debug-flip-normals") {
             frame.debug.flip_normals = true;
+        } else if (option == "--debug-particle-mesh") {
+            frame.debug.particle_mesh = true;
         } else if (option == "--help" || option == "-h") {
             std::cout << kUsage << "\n";
             return kOk;

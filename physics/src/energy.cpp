@@ -19,7 +19,7 @@ Energy World::energy() {
         }
         const PairInput in{body.x.x.data(), body.x.y.data(), body.x.z.data(), body.v.x.data(), body.v.y.data(),
                            body.v.z.data(), body.rest.x.data(), body.rest.y.data(), body.rest.z.data(), n,
-                           body.params.stiffness, body.params.damping};
+                           body.stiffness, body.damping};
         e.elastic += reference_kernel_ ? elastic_energy_reference(in) : body.kernel->elastic_energy(in);
     }
     // Rigid bodies: 1/2 |P|^2 / m + 1/2 L . w, and -m (g . x). Fixed ones do not move.

@@ -103,8 +103,8 @@ void build_particles(SoftBody& body) {
     copy(body.rest, body.x);
     body.v.resize(n);
     for (std::size_t i = 0; i < n; ++i) body.v.set(i, p.initial_velocity);
-    body.mass = p.particle_mass;
-    body.inv_mass.assign(n, 1.0f / body.mass);
+    body.inv_mass.assign(n, 1.0f);
+    apply_body_keys(body);
     for (std::uint32_t vertex : p.pinned) {
         const std::uint32_t particle = particle_of_vertex(body, vertex);
         body.inv_mass[particle] = 0.0f;
@@ -143,8 +143,13 @@ void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned) {
     }
 }
 
-void set_particle_mass(SoftBody& body, float mass) {
-    if (mass == body.mass) return;
+void apply_body_keys(SoftBody& body) {
+    const Params& p = body.params;
+    // r = 1 (and every value exactly the key's) unless the body is reduced.
+    const float r = body.reduced ? float(body.mesh.particle_count()) / float(body.particle_count()) : 1.0f;
+    body.stiffness = body.reduced ? p.stiffness * r * r : p.stiffness;
+    body.damping = body.reduced ? p.damping * r * r : p.damping;
+    const float mass = body.reduced ? p.particle_mass * r : p.particle_mass;
     body.mass = mass;
     for (float& w : body.inv_mass) {
         if (w != 0.0f) w = 1.0f / mass;

@@ -97,7 +97,7 @@ Stability mode_stability(double lambda, double k, double c, const Params& world,
 Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps) {
     const double n = static_cast<double>(body.particle_count());
     const double lambda = n >= 2.0 ? n / double(body.mass) : 0.0;  // lambda_max of M^-1 G, see above
-    return mode_stability(lambda, body.params.stiffness, body.params.damping, world, substeps);
+    return mode_stability(lambda, body.stiffness, body.damping, world, substeps);
 }
 
 // A spring between bodies is one mode: its two ends move apart along the spring against the

@@ -174,7 +174,7 @@ void World::set_params(const Params& params) {
     if (!soft_.empty() && soft_.front().name == "body") {
         check_pins(params, soft_.front().mesh);
         soft_.front().params = params;
-        set_particle_mass(soft_.front(), params.particle_mass);
+        apply_body_keys(soft_.front());
     }
     // Switching to Verlet restarts it from the current x and v (x_{-1} = x_0 - v_0 h): its step
     // was last kept up to date when Verlet last ran, and is stale by now.
@@ -264,7 +264,7 @@ void World::evaluate_forces(int stage, bool record_contacts) {
                                                            body.v_stage.y.data(), body.v_stage.z.data()};
         // Eq. 21 and Eq. 22 over every pair.
         const PairInput in{s.x,  s.y,  s.z,  s.vx, s.vy, s.vz, body.rest.x.data(), body.rest.y.data(), body.rest.z.data(),
-                           n, body.params.stiffness, body.params.damping};
+                           n, body.stiffness, body.damping};
         if (reference_kernel_) pair_forces_reference(in, body.force);
         else body.kernel->compute(in, body.force);
 

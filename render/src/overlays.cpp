@@ -175,9 +175,12 @@ void OverlayBuilder::build_soft(const Frame& frame, const BodyView& body, const 
         }
     }
 
-    if (on.particles) {
+    // A mesh without faces (a point cloud) has no surface to draw: its particles are the body,
+    // drawn whether or not the particles overlay is on (unless the body is hidden).
+    const bool faceless = (body.surface ? body.surface : body.mesh)->triangle_count() == 0;
+    if (on.particles || (faceless && frame.appearance.body != BodyStyle::Hidden)) {
         // When no surface is drawn the particles are the body, and take its colour.
-        const bool are_body = frame.appearance.body == BodyStyle::Hidden || body.mesh->triangle_count() == 0;
+        const bool are_body = frame.appearance.body == BodyStyle::Hidden || faceless;
         const glm::vec4 color = are_body ? glm::vec4(frame.appearance.body_color, 1.0f) : kParticleColor;
         const float radius = are_body ? 1.4f * particle_radius : particle_radius;
         for (std::size_t i = 0; i < n; ++i) out.spheres.push_back({x[i], radius, color});

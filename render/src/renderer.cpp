@@ -333,7 +333,8 @@ void Renderer::State::prepare_soft(const Frame& frame) {
         SoftDraw& d = soft[b];
         interpolate_positions(view, frame.debug.body_offset, d.particles);
         d.shape = measure_body(d.particles, view.rest_positions);
-        const Mesh* drawn = view.surface && !view.skin.empty() ? view.surface : view.mesh;
+        const bool skinned = view.surface && !view.skin.empty() && !frame.debug.particle_mesh;
+        const Mesh* drawn = skinned ? view.surface : view.mesh;
         d.has_surface = drawn && drawn->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
                         look.body != BodyStyle::Wireframe;
         if (!d.has_surface) continue;
@@ -361,7 +362,8 @@ void Renderer::State::prepare_soft(const Frame& frame) {
         SoftDraw& d = soft[b];
         if (!d.has_surface) continue;
         const BodyView& view = frame.soft_bodies[b];
-        d.gpu.upload_topology(view.surface && !view.skin.empty() ? *view.surface : *view.mesh);
+        const bool skinned = view.surface && !view.skin.empty() && !frame.debug.particle_mesh;
+        d.gpu.upload_topology(skinned ? *view.surface : *view.mesh);
         const auto& vertices = d.surface.vertices();
         gl::stream(GL_ARRAY_BUFFER, d.gpu.vbo.id(), vertices.data(), static_cast<GLsizeiptr>(vertices.size() * sizeof(SurfaceVertex)));
     }

@@ -3,7 +3,7 @@
 # Paths are relative to this folder (the command runs here).
 set(SCREENSHOT_SIZE 320x240)
 
-set(SCREENSHOT_CASES resting falling bouncing sliding springs pointcloud hanging showcase rigid contacts)
+set(SCREENSHOT_CASES resting falling bouncing sliding springs pointcloud hanging showcase rigid contacts reduced)
 
 # A smooth body settled on the floor (contact shadow, smooth shading, the floor and its grid).
 set(CASE_resting     --scene scenes/resting.json --at 4 --overlay none)
@@ -26,11 +26,14 @@ set(CASE_rigid       --scene scenes/rigid.json --at 0.3 --overlay angular,com)
 # thrown off the other end; the contacts overlay (points, normals, impulses) on rigid-rigid and
 # soft-rigid contacts.
 set(CASE_contacts    --scene scenes/seesaw.json --at 0.8 --overlay contacts --camera yaw=-30,pitch=14,zoom=0.8)
+# A body above its particle budget: the knot's 5,760 vertices simulated on 600 particles, its
+# full-resolution surface drawn by skinning (physics/mesh_reduce.h).
+set(CASE_reduced     --scene scenes/reduced.json --at 1.0 --camera follow)
 # The README's picture, larger: a soft ball squashed on landing.
 set(CASE_showcase    --scene scenes/bouncing.json --at 0.6 --camera follow,yaw=-40,pitch=12 --size 640x360)
 
 # Faults that must make a case fail: each one is that case rendered with a deliberate change.
-set(NEGATIVE_CASES shift_x_1cm shift_z_1cm recolour no_ground flipped_normals no_shadow no_springs rigid_shift_1cm no_contacts)
+set(NEGATIVE_CASES shift_x_1cm shift_z_1cm recolour no_ground flipped_normals no_shadow no_springs rigid_shift_1cm no_contacts particle_mesh)
 set(NEGATIVE_shift_x_1cm     resting  --debug-offset 0.01,0,0)
 set(NEGATIVE_shift_z_1cm     falling  --debug-offset 0,0,0.01)
 set(NEGATIVE_recolour        resting  --body-color E8703A)
@@ -40,3 +43,4 @@ set(NEGATIVE_no_shadow       falling  --no-shadows)
 set(NEGATIVE_no_springs      springs  --overlay none)
 set(NEGATIVE_rigid_shift_1cm rigid    --debug-offset 0.01,0,0)
 set(NEGATIVE_no_contacts     contacts --overlay none)
+set(NEGATIVE_particle_mesh   reduced  --debug-particle-mesh)

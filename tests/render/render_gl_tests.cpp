@@ -137,12 +137,18 @@ TEST_F(RendererTest, APointCloudDrawsWithoutASurface) {
     frame.overlays.particles = true;
     renderer_->draw(frame, kW, kH);
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    const render::Image with_overlay = renderer_->read_back();
+    // Hidden, nothing of the body shows; drawn as a solid body, its particles are the body,
+    // with or without the particles overlay (a user's point cloud shows at the defaults).
     frame.overlays.particles = false;
+    frame.appearance.body = render::BodyStyle::Hidden;
     renderer_->draw(frame, kW, kH);
     const render::Image empty = renderer_->read_back();
-    frame.overlays.particles = true;
+    frame.appearance.body = render::BodyStyle::Solid;
     renderer_->draw(frame, kW, kH);
-    EXPECT_NE(renderer_->read_back().rgba, empty.rgba) << "the particles must show";
+    const render::Image plain = renderer_->read_back();
+    EXPECT_NE(plain.rgba, empty.rgba) << "the particles must show";
+    EXPECT_EQ(plain.rgba, with_overlay.rgba) << "the overlay adds nothing to a point cloud drawn as its particles";
 }
 
 }  // namespace

@@ -61,6 +61,12 @@ struct SoftBody {
     Vec3Array verlet_step;     // Verlet's x_n - x_{n-1}, carried as such (see integrators.cpp)
     FloatArray inv_mass;       // 0 for pinned particles
     float mass = 1.0f;         // of each particle
+    // The springs' and dampers' k and c (Eq. 21, 22) as simulated: the body's keys, or for a
+    // reduced body (below) the keys that give it the full mesh's mass and stiffness: with
+    // r = (mesh particles) / (simulated particles), each particle carries r particles' mass and
+    // k and c grow by r^2, so the body weighs the same, sags the same under its weight (the
+    // network's stiffness goes as k N^2) and its fastest mode keeps omega^2 = k N / m.
+    float stiffness = 0.0f, damping = 0.0f;
     float verlet_h = 0.0f;     // step verlet_step was made for (0: make it from v)
 
     // Net force on each particle (N) at the last force evaluation, friction included: for display.
@@ -100,7 +106,8 @@ std::uint32_t vertex_of_particle(const SoftBody& body, std::uint32_t particle);
 // Pins or frees one particle; a pinned particle has 1/m = 0 and stays where it is.
 void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned);
 
-// Applies a new particle mass to every free particle.
-void set_particle_mass(SoftBody& body, float mass);
+// Applies the body's particle_mass, stiffness and damping keys (live: pins stay), scaled for a
+// reduced body as `stiffness` above says.
+void apply_body_keys(SoftBody& body);
 
 }  // namespace softbody

@@ -123,6 +123,7 @@ struct Appearance {
 struct DebugOptions {
     glm::vec3 body_offset{0.0f};  // draws the soft bodies (and all that follows them) shifted, m
     bool flip_normals = false;    // inverts the recomputed normals
+    bool particle_mesh = false;   // draws a reduced body's simulated particles' mesh, not its full surface
 };
 
 struct Frame {
