@@ -147,8 +147,8 @@ void apply_body_keys(SoftBody& body) {
     const Params& p = body.params;
     // r = 1 (and every value exactly the key's) unless the body is reduced.
     const float r = body.reduced ? float(body.mesh.particle_count()) / float(body.particle_count()) : 1.0f;
-    body.stiffness = body.reduced ? p.stiffness * r * r : p.stiffness;
-    body.damping = body.reduced ? p.damping * r * r : p.damping;
+    body.stiffness = body.reduced ? p.stiffness * r : p.stiffness;
+    body.damping = body.reduced ? p.damping * r : p.damping;
     const float mass = body.reduced ? p.particle_mass * r : p.particle_mass;
     body.mass = mass;
     for (float& w : body.inv_mass) {

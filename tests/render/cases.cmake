@@ -26,8 +26,8 @@ set(CASE_rigid       --scene scenes/rigid.json --at 0.3 --overlay angular,com)
 # thrown off the other end; the contacts overlay (points, normals, impulses) on rigid-rigid and
 # soft-rigid contacts.
 set(CASE_contacts    --scene scenes/seesaw.json --at 0.8 --overlay contacts --camera yaw=-30,pitch=14,zoom=0.8)
-# A body above its particle budget: the knot's 5,760 vertices simulated on 600 particles, its
-# full-resolution surface drawn by skinning (physics/mesh_reduce.h).
+# A body above its particle budget: the knot's 5,760 vertices simulated on 600 particles (k 100
+# N/m: a body of 600 holds its shape), its full-resolution surface drawn by skinning.
 set(CASE_reduced     --scene scenes/reduced.json --at 1.0 --camera follow)
 # The README's picture, larger: a soft ball squashed on landing.
 set(CASE_showcase    --scene scenes/bouncing.json --at 0.6 --camera follow,yaw=-40,pitch=12 --size 640x360)
