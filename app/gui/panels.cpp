@@ -362,8 +362,25 @@ void Panels::mesh(Demo& demo) {
     const bool soft = world.soft_body_count() > 0;
     if (soft) {
         const Mesh& mesh = world.mesh();
+        const SoftBody& body = world.body();
         ImGui::TextWrapped("%s", fs::path(mesh.source).filename().string().c_str());
-        ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+        if (body.reduced) {
+            ImGui::Text("%zu vertices, simulated on %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+            if (ImGui::IsItemHovered()) {
+                ImGui::SetTooltip("Above max_particles (%d): the %zu distinct positions follow %zu particles chosen over\n"
+                                  "the body (skinning); each weighs %.3g particles' mass, k and c as much again.",
+                                  body.params.max_particles, mesh.particle_count(), world.particle_count(),
+                                  double(mesh.particle_count()) / double(world.particle_count()));
+            }
+        } else {
+            ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+        }
+        ImGui::Text("scale %.4g%s, +%s up", double(body.scale_used), body.params.scale == 0.0f ? " (auto: 1 m, centred)" : "",
+                    body.params.up_axis.c_str());
+        if (ImGui::IsItemHovered()) {
+            ImGui::SetTooltip("A mesh opened or dropped without a scene is sized so its largest side is 1 m and stood\n"
+                              "up (+y up, as most exporters write). Parameters: scale, up_axis (both on reset).");
+        }
         ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), world.spring_count());
         ImGui::Text("memory %s", memory_text(world.particle_count()).c_str());
     } else {
