@@ -63,6 +63,9 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
         demo.save_preset(args[0], args.size() == 2);
     } else if (command.verb == "reset") {
         demo.reset();
+    } else if (command.verb == "inspect") {
+        if (args[0] == "none") demo.stop_inspecting();
+        else demo.inspect_particle(0, static_cast<std::uint32_t>(std::stoul(args[0])));
     } else if (command.verb == "pause") {
         demo.paused = true;
     } else if (command.verb == "play") {
@@ -203,6 +206,16 @@ int run_command(int argc, char** argv, int first) {
         {"rigid_bodies", rigid_bodies_json(world)},
         {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
+    // The inspector's read-out, as the panel shows it.
+    if (const auto in = demo->particle_inspection()) {
+        nlohmann::ordered_json terms = nlohmann::ordered_json::array();
+        for (const ForceTerm& t : in->terms) {
+            terms.push_back({{"name", t.name}, {"equation", t.equation}, {"force", {t.force.x, t.force.y, t.force.z}},
+                             {"detail", t.detail}});
+        }
+        out["inspection"] = {{"particle", in->particle}, {"x", {in->x.x, in->x.y, in->x.z}}, {"v", {in->v.x, in->v.y, in->v.z}},
+                             {"terms", terms}, {"net", {in->net.x, in->net.y, in->net.z}}, {"on_ground", in->on_ground}};
+    }
     // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.
     const ResidentMemory end = resident_memory();
     out["memory_kib"] = {{"after_warmup", after_warmup.now_kib}, {"peak_after_warmup", after_warmup.peak_kib},

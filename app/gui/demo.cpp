@@ -58,6 +58,7 @@ void Demo::after_load(const Scene& scene) {
     clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
     energy_.clear();
     last_collision_.reset();
+    stop_inspecting();
     match_ground(scene.params, appearance);
     frame_body();
     sample_energy();
@@ -247,6 +248,53 @@ void Demo::frame_body() {
     camera.pan(-shift * view_width, 0.0f);
 }
 
+void Demo::inspect(const Pick& pick) {
+    if (pick.rigid) {
+        inspected_particle_.reset();
+        inspected_rigid_ = pick.body;
+    } else {
+        inspect_particle(pick.body, pick.particle);
+    }
+}
+
+void Demo::inspect_particle(std::size_t body, std::uint32_t particle) {
+    inspected_rigid_.reset();
+    inspected_particle_ = {body, particle};
+}
+
+void Demo::stop_inspecting() {
+    inspected_particle_.reset();
+    inspected_rigid_.reset();
+}
+
+std::optional<ParticleInspection> Demo::particle_inspection() const {
+    if (!inspected_particle_) return std::nullopt;
+    const auto [body, particle] = *inspected_particle_;
+    if (body >= world_->soft_body_count() || particle >= world_->soft_body(body).particle_count()) return std::nullopt;
+    return softbody::inspect_particle(*world_, body, particle);
+}
+
+std::optional<RigidInspection> Demo::rigid_inspection() const {
+    if (!inspected_rigid_ || *inspected_rigid_ >= world_->rigid_body_count()) return std::nullopt;
+    return inspect_rigid(*world_, *inspected_rigid_);
+}
+
+namespace {
+
+// The inspector's arrows: each force at its particle (or centre of mass), one colour per
+// equation, the largest six tenths of the bodies' radius long.
+glm::vec3 equation_color(const std::string& equation) {
+    if (equation == "Listing 8" || equation == "Listing 9") return {0.20f, 0.55f, 0.95f};  // weight: blue
+    if (equation == "Eq. 21") return {0.90f, 0.20f, 0.20f};                               // springs: red
+    if (equation == "Eq. 22") return {0.95f, 0.60f, 0.10f};                               // dampers: orange
+    if (equation == "Eq. 23") return {0.55f, 0.80f, 0.95f};                               // drag: sky
+    if (equation == "Eq. 24" || equation == "Eq. 25") return {0.60f, 0.30f, 0.80f};       // friction: purple
+    if (equation == "contact" || equation == "Eq. 37" || equation == "Eq. 38") return {0.20f, 0.70f, 0.35f};  // green
+    return {0.45f, 0.45f, 0.45f};
+}
+
+}  // namespace
+
 render::Frame Demo::make_frame() const {
     render::Frame frame;
     const World& w = *world_;
@@ -263,6 +311,27 @@ render::Frame Demo::make_frame() const {
             frame.overlays.grab_point = to_glm(m.x + m.R * grab->point);
         } else {
             frame.overlays.grab_particle = grab->particle;
+        }
+    }
+    const float size = std::max(world_bounds(w).radius, 0.05f);
+    if (const auto in = particle_inspection()) {
+        float largest = 0.0f;
+        for (const ForceTerm& t : in->terms) largest = std::max(largest, length(t.force));
+        for (const ForceTerm& t : in->terms) {
+            if (largest > 0.0f && length(t.force) > 1e-3f * largest) {
+                frame.arrows.push_back({to_glm(Vec3d(in->x)), to_glm(Vec3d(t.force)) * (0.6f * size / largest), equation_color(t.equation)});
+            }
+        }
+        frame.arrows.push_back({to_glm(Vec3d(in->x)), glm::vec3(0.0f, 0.0f, 0.04f * size), glm::vec3(0.1f), 6.0f});  // the marker
+    }
+    if (const auto in = rigid_inspection()) {
+        const Vec3d centre = w.rigid_motion(in->body).x;
+        double largest = 0.0;
+        for (const WrenchTerm& t : in->terms) largest = std::max(largest, length(t.force));
+        for (const WrenchTerm& t : in->terms) {
+            if (largest > 0.0 && length(t.force) > 1e-3 * largest) {
+                frame.arrows.push_back({to_glm(centre), to_glm(t.force) * float(0.6 * size / largest), equation_color(t.equation)});
+            }
         }
     }
     return frame;

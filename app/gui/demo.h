@@ -10,6 +10,7 @@
 #include <string>
 
 #include "physics/clock.h"
+#include "physics/inspect.h"
 #include "physics/params.h"
 #include "physics/scene_io.h"
 #include "physics/world.h"
@@ -112,6 +113,14 @@ public:
     bool grabbing() const { return world_->grab().has_value(); }
     void toggle_pin(std::uint32_t particle);
 
+    // --- The inspector: one particle's forces, equation by equation, or one rigid body's ----
+    void inspect(const Pick& pick);
+    void inspect_particle(std::size_t body, std::uint32_t particle);
+    void stop_inspecting();
+    // What acts on the inspected particle now; empty when none is inspected (or it is gone).
+    std::optional<ParticleInspection> particle_inspection() const;
+    std::optional<RigidInspection> rigid_inspection() const;
+
 private:
     void after_load(const Scene& scene);
     void sample_energy();
@@ -125,6 +134,8 @@ private:
     std::string source_;
     std::deque<EnergySample> energy_;
     std::optional<LastCollision> last_collision_;
+    std::optional<std::pair<std::size_t, std::uint32_t>> inspected_particle_;  // soft body, particle
+    std::optional<std::size_t> inspected_rigid_;
     int ticks_last_frame_ = 0;
     double physics_ms_per_tick_ = 0.0;
     float grab_depth_ = 0.0f;

@@ -25,7 +25,12 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             last_y_ = py;
             if (e.button == 0) {
                 const auto picked = demo.pick(px, py, width, height, 18.0f * ui_scale);
-                if (picked && e.shift && !picked->rigid) {
+                if (e.ctrl) {
+                    // ctrl-click: inspect what is there (nothing: stop inspecting)
+                    if (picked) demo.inspect(*picked);
+                    else demo.stop_inspecting();
+                    drag_button_ = -1;
+                } else if (picked && e.shift && !picked->rigid) {
                     demo.toggle_pin(picked->particle);  // shift-click: pin or free
                     drag_button_ = -1;
                 } else if (picked) {

@@ -108,6 +108,9 @@ void Panels::draw(Demo& demo, float fps) {
     ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-150 * scale_);
     if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) simulation(demo, fps);
+    if (demo.particle_inspection() || demo.rigid_inspection()) {
+        if (ImGui::CollapsingHeader("Inspector", ImGuiTreeNodeFlags_DefaultOpen)) inspector(demo);
+    }
     if (ImGui::CollapsingHeader("Stability", ImGuiTreeNodeFlags_DefaultOpen)) stability(demo);
     if (ImGui::CollapsingHeader("Energy", ImGuiTreeNodeFlags_DefaultOpen)) energy(demo);
     if (demo.world().rigid_body_count() > 0 && ImGui::CollapsingHeader("Last collision", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -402,6 +405,52 @@ void Panels::mesh(Demo& demo) {
     ImGui::SameLine();
     if (ImGui::Button("Open") && open_path_[0]) demo.load_mesh_file(open_path_);
     ImGui::TextDisabled("or drop a file on the window");
+}
+
+// One particle's forces, one line each, named by equation, as Listing 8's CalcForce adds them;
+// or a rigid body's, each with its torque about the centre of mass.
+void Panels::inspector(Demo& demo) {
+    const auto vec = [](const char* label, const Vec3& v, const char* unit) {
+        ImGui::Text("%-8s %8.3f %8.3f %8.3f %s", label, double(v.x), double(v.y), double(v.z), unit);
+    };
+    if (const auto in = demo.particle_inspection()) {
+        ImGui::Text("particle %u of '%s'%s", in->particle, demo.world().soft_body(in->body).name.c_str(),
+                    in->mass == 0.0f ? " (pinned)" : "");
+        vec("x", in->x, "m");
+        vec("v", in->v, "m/s");
+        vec("a", in->a, "m/s^2");
+        ImGui::TextDisabled("force      from          |F|, N");
+        for (const ForceTerm& t : in->terms) {
+            ImGui::Text("%-10s %-10s %9.4g", t.name.substr(0, 10).c_str(), t.equation.c_str(), double(length(t.force)));
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s: %s\n%s", t.name.c_str(), t.equation.c_str(), t.detail.c_str());
+            ImGui::TextDisabled("  (%.3f, %.3f, %.3f)", double(t.force.x), double(t.force.y), double(t.force.z));
+            if (t.name == "friction") ImGui::TextWrapped("  %s", t.detail.c_str());
+        }
+        ImGui::Separator();
+        ImGui::Text("%-21s %9.4g", "net = m a", double(length(in->net)));
+        ImGui::TextDisabled("  (%.3f, %.3f, %.3f)", double(in->net.x), double(in->net.y), double(in->net.z));
+        if (!in->strongest.empty()) {
+            ImGui::TextDisabled("strongest pairs (Eq. 21 + 22):");
+            for (const PairTerm& p : in->strongest) {
+                ImGui::Text("  %-5u l %.3f/%.3f m %.3g N", p.other, double(p.length), double(p.rest_length),
+                            double(length(p.spring + p.damper)));
+            }
+        }
+        ImGui::TextDisabled("ctrl-click elsewhere to stop");
+        return;
+    }
+    const auto in = demo.rigid_inspection();
+    if (!in) return;
+    const RigidBody& body = demo.world().rigid_body(in->body);
+    ImGui::Text("rigid body '%s'%s", body.name.c_str(), body.fixed ? " (fixed)" : "");
+    ImGui::TextDisabled("force          |F| N   |tau| N m");
+    for (const WrenchTerm& t : in->terms) {
+        ImGui::Text("%-14s %-8s %8.4g %8.4g", t.name.substr(0, 14).c_str(), t.equation.c_str(), length(t.force), length(t.torque));
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)\n%s", t.name.c_str(), t.equation.c_str(), t.detail.c_str());
+    }
+    ImGui::Separator();
+    ImGui::Text("sum: F %.4g N, tau %.4g N m", length(in->force), length(in->torque));
+    ImGui::TextDisabled("P, L, omega, q, J_world: the Rigid bodies panel");
 }
 
 // Eq. 38 with the numbers of the latest hit, so that a student can follow the formula through.

@@ -27,6 +27,7 @@ private:
     void mesh(Demo& demo);
     void rigid_bodies(Demo& demo);
     void last_collision(Demo& demo);
+    void inspector(Demo& demo);
     void display(Demo& demo);
     void energy(Demo& demo);
     void stability(Demo& demo);

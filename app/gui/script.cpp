@@ -99,6 +99,14 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
                 fail("save_preset needs a path, optionally followed by 'overwrite'");
             }
             command.verb = verb;
+        } else if (verb == "inspect") {
+            if (args.size() != 1) fail("inspect needs a particle number of the first soft body, or none");
+            if (args[0] != "none") {
+                std::uint32_t particle = 0;
+                const auto [end, ec] = std::from_chars(args[0].data(), args[0].data() + args[0].size(), particle);
+                if (ec != std::errc() || end != args[0].data() + args[0].size()) fail("inspect needs a particle number, or none");
+            }
+            command.verb = verb;
         } else if (verb == "reset" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");
             if (verb == "loop" && command.frame == 0) fail("loop needs a frame after 0");

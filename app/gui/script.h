@@ -10,6 +10,7 @@
 //   80       load_scene assets/scenes/pig.json
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
+//   92       inspect 12                 the inspector on particle 12 of the first soft body (or none)
 //   95       reset | pause | play
 //   400      loop                       start the script again (from its frame 0) here
 //

@@ -138,6 +138,12 @@ void normal_impulse(RigidContact& c, Row& row, double target) {
 
 }  // namespace
 
+Vec3d contact_impulse(const RigidContact& c) {
+    Vec3d t1, t2;
+    tangents(c.normal, t1, t2);
+    return c.normal * c.normal_impulse + t1 * c.tangent_impulse[0] + t2 * c.tangent_impulse[1];
+}
+
 double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& r_a, double inv_m_b,
                               const Mat3& J_inv_b, const Vec3d& r_b, const Vec3d& n) {
     return inv_m_a + inv_m_b + dot(n, cross(J_inv_a * cross(r_a, n), r_a)) + dot(n, cross(J_inv_b * cross(r_b, n), r_b));

@@ -338,6 +338,9 @@ void OverlayBuilder::build_rigid(const Frame& frame, float scene_size, OverlayGe
                   out.lines_on_top);
         }
     }
+    for (const ArrowView& a : frame.arrows) {
+        arrow(cam, a.from, a.vector, 0.0f, 0.25f * glm::length(a.vector), glm::vec4(a.color, 1.0f), a.width, out.lines_on_top);
+    }
     if (on.grab && on.grab_on_rigid) {
         out.lines_on_top.push_back({on.grab_point, on.grab_target, kGrabColor, 2.5f});
         out.spheres_on_top.push_back({on.grab_point, 0.03f * size, kGrabColor});

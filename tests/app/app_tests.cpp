@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 
 #include "render/image.h"
@@ -125,6 +126,46 @@ TEST(App, DraggingARigidBodyByItsEndLiftsAndTurnsIt) {
     const auto& q = plank["orientation"];
     const double up = 2.0 * (q[1].get<double>() * q[3].get<double>() - q[0].get<double>() * q[2].get<double>());
     EXPECT_GT(std::abs(up), 0.3) << "pulled at its end, the plank should tilt";
+}
+
+// The inspector on a particle of a cube resting on the ground: its read-out names the weight
+// (Listing 8), the springs (Eq. 21), the dampers (Eq. 22), the ground and static friction
+// (Eq. 24), and its terms add up to the net force the panel shows (about zero: at rest). A
+// ctrl-click on empty sky stops it.
+TEST(App, InspectorNamesEachForceAndTheySumToTheNet) {
+    const fs::path scene = scratch() / "resting_cube.json";
+    std::ofstream(scene) << "{\"mesh\": \"" << SOFTBODY_SOURCE_DIR << "/assets/meshes/cube.obj\", \"scale\": 0.3,"
+                            " \"up_axis\": \"z\", \"init_height\": 0.15, \"particle_mass\": 0.1, \"stiffness\": 200,"
+                            " \"damping\": 0.5}";
+    const fs::path script = write_script("inspect.script", "5 inspect 0\n");
+    const Result r = run_app("--scene " + quote(scene.string()) + " --size 960x600 --frames 240 --frame-time 0.02 --script " +
+                             quote(script.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(r.summary.contains("inspection")) << r.out;
+    const auto& in = r.summary["inspection"];
+    EXPECT_TRUE(in["on_ground"].get<bool>());
+    std::map<std::string, std::string> equation;
+    double sum[3] = {0, 0, 0};
+    for (const auto& t : in["terms"]) {
+        equation[t["name"].get<std::string>()] = t["equation"].get<std::string>();
+        for (int k = 0; k < 3; ++k) sum[k] += t["force"][k].get<double>();
+    }
+    EXPECT_EQ(equation["weight"], "Listing 8");
+    EXPECT_EQ(equation["springs"], "Eq. 21");
+    EXPECT_EQ(equation["dampers"], "Eq. 22");
+    EXPECT_EQ(equation["friction"], "Eq. 24");
+    EXPECT_EQ(equation.count("ground"), 1u);
+    for (int k = 0; k < 3; ++k) {
+        // The summary's floats, summed again in double: rounding only.
+        EXPECT_NEAR(sum[k], in["net"][k].get<double>(), 1e-5) << "axis " << k;
+        EXPECT_NEAR(in["net"][k].get<double>(), 0.0, 1e-3) << "at rest, axis " << k;  // weight 0.98 N
+    }
+    // ctrl-click on the sky: nothing there, and the inspector closes.
+    const fs::path stop = write_script("inspect_stop.script", "5 inspect 0\n10 move 0.9 0.05\n11 press left ctrl\n12 release left\n");
+    const Result stopped = run_app("--scene " + quote(scene.string()) + " --size 960x600 --frames 20 --script " +
+                                   quote(stop.string()));
+    ASSERT_EQ(stopped.exit_code, 0) << stopped.err;
+    EXPECT_FALSE(stopped.summary.contains("inspection")) << stopped.out;
 }
 
 TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {

@@ -33,6 +33,10 @@ struct RigidContact {
     double bounce_shift = 0.0;   // m: how far a bounce from a gap moves the bodies back (see contact_solver.h)
 };
 
+// The whole impulse a contact's solver applied on side a, normal and tangential (friction)
+// together, N s (side b took the opposite).
+Vec3d contact_impulse(const RigidContact& contact);
+
 // Eq. 38 for one contact, term by term, as a student checks it by hand: the impulse along n that
 // takes the closing speed v_rel . n to -e times it, for this contact alone (World::impulse_terms).
 // Body 1 is side a (a rigid body, or a particle: no rotation term), body 2 side b (the ground:

@@ -84,6 +84,13 @@ struct ContactView {
     float impulse = 0.0f;  // N s along the normal
 };
 
+// An arrow the caller places (the inspector's forces): from a point, a vector, drawn on top.
+struct ArrowView {
+    glm::vec3 from{0.0f}, vector{0.0f};  // m
+    glm::vec3 color{1.0f};               // sRGB
+    float width = 2.5f;                  // px
+};
+
 enum class BodyStyle { Solid, Ghost, Wireframe, Hidden };
 
 // Each overlay on its own switch.
@@ -131,6 +138,7 @@ struct Frame {
     std::vector<RigidBodyView> rigid_bodies;
     std::vector<LinkView> links;
     std::vector<ContactView> contacts;
+    std::vector<ArrowView> arrows;
     Camera camera;
     Overlays overlays;
     Appearance appearance;
