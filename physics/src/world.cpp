@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "contact_solver.h"
 #include "forces.h"
@@ -96,6 +97,60 @@ void World::build() {
 }
 
 void World::reset() { build(); }
+
+WorldSnapshot World::snapshot() const {
+    WorldSnapshot out;
+    for (const SoftBody& body : soft_) {
+        out.soft.push_back({body.x, body.v, body.verlet_step, body.x_tick_prev, body.inv_mass, body.verlet_h});
+    }
+    out.rigid = y_;
+    out.rigid_tick_prev = y_tick_prev_;
+    out.contacts = contacts_;
+    out.ticks = ticks_;
+    out.status = status_;
+    out.divergence = divergence_;
+    out.energy_baseline = energy_baseline_;
+    out.energy_scale = energy_scale_;
+    out.energy_baseline_stale = energy_baseline_stale_;
+    return out;
+}
+
+void World::restore(const WorldSnapshot& s) {
+    if (s.soft.size() != soft_.size() || s.rigid.size() != y_.size()) {
+        throw std::invalid_argument("World::restore: a snapshot of another world");
+    }
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        SoftBody& body = soft_[b];
+        const WorldSnapshot::Soft& from = s.soft[b];
+        if (from.x.size() != body.particle_count()) throw std::invalid_argument("World::restore: a snapshot of another body");
+        body.x = from.x;
+        body.v = from.v;
+        body.verlet_step = from.verlet_step;
+        body.x_tick_prev = from.x_tick_prev;
+        body.inv_mass = from.inv_mass;
+        body.verlet_h = from.verlet_h;
+    }
+    y_ = s.rigid;
+    y_tick_prev_ = s.rigid_tick_prev;
+    contacts_ = s.contacts;
+    previous_contacts_.clear();
+    ticks_ = s.ticks;
+    status_ = s.status;
+    divergence_ = s.divergence;
+    energy_baseline_ = s.energy_baseline;
+    energy_scale_ = s.energy_scale;
+    energy_baseline_stale_ = s.energy_baseline_stale;
+}
+
+std::size_t WorldSnapshot::bytes() const {
+    std::size_t total = sizeof(*this);
+    for (const Soft& body : soft) {
+        total += sizeof(Soft) + body.inv_mass.size() * sizeof(float) +
+                 (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
+    }
+    return total + (rigid.size() + rigid_tick_prev.size()) * sizeof(double) + contacts.size() * sizeof(RigidContact) +
+           divergence.size();
+}
 
 // Names to indices, each end checked, and the rest lengths measured where none is given.
 void World::resolve_links(const std::vector<SpringDef>& springs) {

@@ -65,6 +65,27 @@ struct Grab {
     Vec3d point;                // on a rigid body: the grabbed point, body axes from the centre of mass
 };
 
+// Everything a tick carries into the next, copied out (World::snapshot): restored, the world
+// goes on exactly as it did from that moment (the same bits), as long as its keys are the same.
+// The keys themselves, the grab and the bodies' meshes are not part of it.
+struct WorldSnapshot {
+    struct Soft {
+        Vec3Array x, v, verlet_step, x_tick_prev;
+        FloatArray inv_mass;  // pins
+        float verlet_h = 0.0f;
+    };
+    std::vector<Soft> soft;
+    std::vector<double> rigid, rigid_tick_prev;  // Listing 10's flat state, now and a tick before
+    std::vector<RigidContact> contacts;          // the last step's: the next one starts from them
+    std::uint64_t ticks = 0;
+    Status status = Status::Ok;
+    std::string divergence;
+    double energy_baseline = 0.0, energy_scale = 0.0;
+    bool energy_baseline_stale = true;
+
+    std::size_t bytes() const;  // the memory it holds
+};
+
 struct WorldOptions {
     int threads = 1;
     bool reference_kernel = false;  // use the readable one-pair-at-a-time loop
@@ -101,6 +122,10 @@ public:
 
     // Back to the start: every body placed as it was built, with the current params.
     void reset();
+
+    // Time travel: the state as it is now, and back to a state taken earlier from this world.
+    WorldSnapshot snapshot() const;
+    void restore(const WorldSnapshot& snapshot);
 
     // The world's keys, and the first soft body's. Keys marked live in param_table() apply
     // from the next tick; the rest (mesh, scale, init_height, initial_velocity, pinned) apply
