@@ -66,6 +66,10 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
     } else if (command.verb == "inspect") {
         if (args[0] == "none") demo.stop_inspecting();
         else demo.inspect_particle(0, static_cast<std::uint32_t>(std::stoul(args[0])));
+    } else if (command.verb == "rewind") {
+        demo.rewind(std::stod(args[0]));
+    } else if (command.verb == "step_back") {
+        demo.step_back();
     } else if (command.verb == "pause") {
         demo.paused = true;
     } else if (command.verb == "play") {
@@ -206,6 +210,10 @@ int run_command(int argc, char** argv, int first) {
         {"rigid_bodies", rigid_bodies_json(world)},
         {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
+    // The timeline: what the record holds.
+    const History& history = demo->history();
+    out["history"] = {{"oldest_tick", history.oldest_tick()}, {"newest_tick", history.newest_tick()},
+                      {"keyframes", history.keyframe_count()}, {"bytes", history.bytes()}, {"in_past", demo->in_past()}};
     // The inspector's read-out, as the panel shows it.
     if (const auto in = demo->particle_inspection()) {
         nlohmann::ordered_json terms = nlohmann::ordered_json::array();

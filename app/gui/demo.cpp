@@ -62,6 +62,7 @@ void Demo::after_load(const Scene& scene) {
     match_ground(scene.params, appearance);
     frame_body();
     sample_energy();
+    history_.start(*world_);
 }
 
 bool Demo::load_scene_file(const std::string& path) {
@@ -116,10 +117,12 @@ void Demo::reset() {
     energy_.clear();
     last_collision_.reset();
     sample_energy();
+    history_.start(*world_);
 }
 
 void Demo::edit(const Params& params) {
     try {
+        if (!(params == world_->params())) changed();
         world_->set_params(params);
         clock_.set_dt(params.dt);
         match_ground(params, appearance);
@@ -132,6 +135,7 @@ void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
     if (index >= scene_.rigid_bodies.size()) return;
     try {
         (void)make_rigid_body(def);  // refuse now what the reset would refuse
+        changed();
         scene_.rigid_bodies[index] = def;
         world_->set_rigid_material(index, def.restitution, def.friction);
     } catch (const std::exception& e) {
@@ -178,8 +182,7 @@ void Demo::advance(double wall_seconds) {
     if (ticks == 0) return;
     const auto start = std::chrono::steady_clock::now();
     for (int t = 0; t < ticks && world_->status() == Status::Ok; ++t) {
-        world_->tick();
-        note_collision();
+        tick_once();
         ++ticks_last_frame_;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -195,11 +198,52 @@ void Demo::advance(double wall_seconds) {
 
 void Demo::single_tick() {
     if (world_->status() != Status::Ok) return;
-    world_->tick();
-    note_collision();
+    tick_once();
     ticks_last_frame_ = 1;
     if (world_->status() != Status::Ok) error_ = world_->divergence();
     sample_energy();
+}
+
+void Demo::tick_once() {
+    const bool replaying = history_.in_past(*world_);
+    history_.before_tick(*world_);
+    world_->tick();
+    history_.after_tick(*world_);
+    note_collision();
+    if (replaying) after_travel();
+}
+
+void Demo::changed() { history_.branch(*world_); }
+
+void Demo::go_to_tick(std::uint64_t tick) {
+    paused = true;
+    history_.go_to(*world_, tick);
+    // The energy plot and the last collision come back with the world; the plot is cut at now.
+    while (energy_.size() > 1 && energy_.back().time > world_->time() + 1e-9) energy_.pop_back();
+    if (!energy_.empty() && energy_.back().time > world_->time() + 1e-9) energy_.clear();
+    sample_energy();
+    last_collision_.reset();
+    clock_.reset();
+    after_travel();
+    if (world_->status() == Status::Ok) error_.clear();  // back before it diverged
+    else error_ = world_->divergence();
+}
+
+void Demo::rewind(double seconds) {
+    const double dt = double(world_->params().dt);
+    const auto back = static_cast<std::uint64_t>(std::llround(std::max(0.0, seconds) / dt));
+    go_to_tick(world_->ticks() > back ? world_->ticks() - back : 0);
+}
+
+// A replayed tick may bring back keys of that moment: the clock's dt and the rigid bodies'
+// restitution and friction as the panels show them follow.
+void Demo::after_travel() {
+    clock_.set_dt(world_->params().dt);
+    match_ground(world_->params(), appearance);
+    for (std::size_t b = 0; b < scene_.rigid_bodies.size() && b < world_->rigid_body_count(); ++b) {
+        scene_.rigid_bodies[b].restitution = world_->rigid_body(b).restitution;
+        scene_.rigid_bodies[b].friction = world_->rigid_body(b).friction;
+    }
 }
 
 // A collision, not resting contact: a point closing faster than two steps of gravity (and at
@@ -420,6 +464,7 @@ void Demo::begin_grab(const Pick& pick, float x, float y, float width, float hei
     }
     grab_depth_ = glm::dot(at - camera.eye(), camera.forward());
     grab.target = {at.x, at.y, at.z};
+    changed();
     world_->set_grab(grab);
     drag(x, y, width, height);
 }
@@ -435,10 +480,15 @@ void Demo::drag(float x, float y, float width, float height) {
     const glm::vec3 target = origin + direction * t;
     Grab grab = *world_->grab();
     grab.target = {target.x, target.y, target.z};
+    changed();
     world_->set_grab(grab);
 }
 
-void Demo::end_grab() { world_->set_grab(std::nullopt); }
+void Demo::end_grab() {
+    if (!world_->grab()) return;
+    changed();
+    world_->set_grab(std::nullopt);
+}
 
 void Demo::toggle_pin(std::uint32_t particle) {
     // Pins are kept as vertex numbers in the params, so they survive a reset and a saved preset.
@@ -450,6 +500,7 @@ void Demo::toggle_pin(std::uint32_t particle) {
     world_->set_params(params);
     scene_.params.pinned = params.pinned;
     world_->set_pinned(particle, pin);
+    history_.keyframe_now(*world_);  // a pin is part of the state, not of a tick's inputs
 }
 
 }  // namespace softbody::app

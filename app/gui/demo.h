@@ -10,6 +10,7 @@
 #include <string>
 
 #include "physics/clock.h"
+#include "physics/history.h"
 #include "physics/inspect.h"
 #include "physics/params.h"
 #include "physics/scene_io.h"
@@ -69,10 +70,19 @@ public:
     // --- Time ----------------------------------------------------------------------------------
     // Feeds elapsed wall time (times time_scale) to the clock and runs the whole ticks due.
     void advance(double wall_seconds);
-    void single_tick();
+    void single_tick();  // in the past: the next recorded tick
     bool paused = false;
     double time_scale = 1.0;
     int max_ticks_per_frame = 8;
+
+    // --- Time travel: the last 1,000 ticks (20 s) are kept (physics/history.h) ------------------
+    // Going to a recorded tick pauses there; play goes on from it (replaying what was recorded,
+    // then live). A change made in the past (a key, a grab, a pin) drops the recorded future.
+    void go_to_tick(std::uint64_t tick);
+    void step_back() { go_to_tick(world_->ticks() == 0 ? 0 : world_->ticks() - 1); }
+    void rewind(double seconds);  // back this long (as far as the record goes)
+    const History& history() const { return history_; }
+    bool in_past() const { return history_.in_past(*world_); }
 
     // --- What the panels show ------------------------------------------------------------------
     World& world() { return *world_; }
@@ -125,11 +135,15 @@ private:
     void after_load(const Scene& scene);
     void sample_energy();
     void note_collision();  // after each tick
+    void tick_once();       // one tick, recorded or replayed
+    void changed();         // the user changed the world: in the past, the recorded future is dropped
+    void after_travel();    // the panels' records follow the world to its new moment
 
     std::unique_ptr<World> world_;
     Scene scene_;            // what the current world was built from (its params kept by the world)
     std::vector<RigidBodyDef> built_rigid_bodies_;  // the rigid bodies as the world was built
     FixedClock clock_;
+    History history_;
     std::string error_;
     std::string source_;
     std::deque<EnergySample> energy_;

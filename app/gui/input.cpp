@@ -78,6 +78,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                     demo.paused = true;
                     demo.single_tick();
                     break;
+                case GLFW_KEY_COMMA: demo.step_back(); break;
                 case GLFW_KEY_R: demo.reset(); break;
                 case GLFW_KEY_F: demo.frame_body(); break;
                 case GLFW_KEY_P: demo.overlays.particles = !demo.overlays.particles; break;

@@ -131,15 +131,20 @@ void Panels::draw(Demo& demo, float fps) {
 
 void Panels::simulation(Demo& demo, float fps) {
     const World& world = demo.world();
-    const ImVec2 button(100 * scale_, 0);
+    const ImVec2 button(78 * scale_, 0);
     if (ImGui::Button(demo.paused ? "Play" : "Pause", button)) demo.paused = !demo.paused;
     ImGui::SameLine();
-    if (ImGui::Button("Step", button)) {
+    if (ImGui::Button("< Back", button)) demo.step_back();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("One tick back (key ,): the world as it was, bit for bit.");
+    ImGui::SameLine();
+    if (ImGui::Button("Step >", button)) {
         demo.paused = true;
         demo.single_tick();
     }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("One tick on (key . or N).");
     ImGui::SameLine();
     if (ImGui::Button("Reset", button)) demo.reset();
+    timeline(demo);
     float time_scale = static_cast<float>(demo.time_scale);
     if (ImGui::SliderFloat("time scale", &time_scale, 0.05f, 2.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
         demo.time_scale = time_scale;
@@ -152,6 +157,32 @@ void Panels::simulation(Demo& demo, float fps) {
     ImGui::Text("render %.0f FPS   %d threads", fps, world.threads());
     if (world.status() != Status::Ok) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "diverged: reset to go on");
     else if (demo.paused) ImGui::TextDisabled("paused");
+}
+
+// The recorded past (physics/history.h): drag to any tick of it; play goes on from there.
+void Panels::timeline(Demo& demo) {
+    const World& world = demo.world();
+    const History& history = demo.history();
+    const double dt = world.params().dt;
+    int oldest = static_cast<int>(history.oldest_tick()), newest = static_cast<int>(history.newest_tick());
+    int tick = static_cast<int>(world.ticks());
+    ImGui::BeginDisabled(newest == oldest);
+    char label[64];
+    std::snprintf(label, sizeof label, "t = %.2f s", tick * dt);
+    if (ImGui::SliderInt("timeline", &tick, oldest, std::max(newest, oldest + 1), label)) {
+        demo.go_to_tick(static_cast<std::uint64_t>(std::clamp(tick, oldest, newest)));
+    }
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+        ImGui::SetTooltip("The last %.0f s are kept (%.1f MB now). Drag back to any tick and play on: the\n"
+                          "same future, bit for bit, unless you change something; then a new one.",
+                          double(history.capacity_ticks()) * dt, double(history.bytes()) / 1e6);
+    }
+    if (demo.in_past()) {
+        ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.30f, 1.0f), "in the past: %.2f s behind", (newest - tick) * dt);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Back to now")) demo.go_to_tick(history.newest_tick());
+    }
 }
 
 void Panels::stability(Demo& demo) {
@@ -639,6 +670,7 @@ void Panels::help() {
         {"F", "frame the body"},
         {"Space", "pause / play"},
         {"N or .", "one tick"},
+        {",", "one tick back (the timeline keeps the last 20 s)"},
         {"R", "reset"},
         {"P  S  C  V  W", "particles, springs, centre of mass, velocities, omega and L"},
         {"Tab", "hide / show the panels"},

@@ -23,6 +23,7 @@ public:
 
 private:
     void simulation(Demo& demo, float fps);
+    void timeline(Demo& demo);
     void parameters(Demo& demo);
     void mesh(Demo& demo);
     void rigid_bodies(Demo& demo);

@@ -18,7 +18,7 @@ namespace {
 
 const std::map<std::string, int>& key_names() {
     static const std::map<std::string, int> keys = {
-        {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"r", GLFW_KEY_R},
+        {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"comma", GLFW_KEY_COMMA}, {"r", GLFW_KEY_R},
         {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
         {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
     };
@@ -85,7 +85,7 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             command.verb = "input";
         } else if (verb == "key") {
             e.type = InputEvent::Type::Key;
-            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period r f h f1 p s c v w tab escape");
+            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period comma r f h f1 p s c v w tab escape");
             e.key = key_names().at(args[0]);
             command.verb = "input";
         } else if (verb == "set") {
@@ -103,11 +103,15 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             if (args.size() != 1) fail("inspect needs a particle number of the first soft body, or none");
             if (args[0] != "none") {
                 std::uint32_t particle = 0;
-                const auto [end, ec] = std::from_chars(args[0].data(), args[0].data() + args[0].size(), particle);
-                if (ec != std::errc() || end != args[0].data() + args[0].size()) fail("inspect needs a particle number, or none");
+                const auto [last, error] = std::from_chars(args[0].data(), args[0].data() + args[0].size(), particle);
+                if (error != std::errc() || last != args[0].data() + args[0].size()) fail("inspect needs a particle number, or none");
             }
             command.verb = verb;
-        } else if (verb == "reset" || verb == "pause" || verb == "play" || verb == "loop") {
+        } else if (verb == "rewind") {
+            float seconds = 0.0f;
+            if (args.size() != 1 || !to_float(args[0], seconds) || seconds < 0.0f) fail("rewind needs a number of seconds, 0 or more");
+            command.verb = verb;
+        } else if (verb == "reset" || verb == "step_back" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");
             if (verb == "loop" && command.frame == 0) fail("loop needs a frame after 0");
             command.verb = verb;

@@ -168,6 +168,39 @@ TEST(App, InspectorNamesEachForceAndTheySumToTheNet) {
     EXPECT_FALSE(stopped.summary.contains("inspection")) << stopped.out;
 }
 
+// Time travel: the panels hidden (a small window), the sphere is grabbed and flung (frames
+// 120-160; left alone it rolls to x = 1.27 m by frame 220), then at frame 200 the
+// timeline goes back 2 s (100 ticks, before the grab) and plays on. The replay carries the
+// recorded drag, and the run ends bit for bit where an uninterrupted run of as many ticks does.
+// Stepping back three ticks with the key (and once more with the script) and forward four
+// lands on the same bits too.
+TEST(App, ScrubbingBackAndPlayingOnGivesTheSameEnd) {
+    const std::string drag = "0 key tab\n120 move 0.91 0.54\n121 press left\n122 move 0.88 0.50\n130 move 0.80 0.40\n"
+                             "140 move 0.70 0.30\n160 release left\n";
+    const fs::path plain = write_script("travel_plain.script", drag);
+    const fs::path back = write_script("travel_back.script", drag + "200 rewind 2\n201 play\n");
+    const fs::path steps = write_script("travel_steps.script", drag + "150 pause\n151 key comma\n152 key comma\n153 key comma\n"
+                                                                      "154 step_back\n155 key period\n156 key period\n"
+                                                                      "157 key period\n158 key n\n");
+    const std::string common = "--size 480x300 --frame-time 0.02 ";  // small: four runs of 150-320 frames
+    const Result travelled = run_app(common + "--frames 320 --script " + quote(back.string()));
+    ASSERT_EQ(travelled.exit_code, 0) << travelled.err;
+    const auto ticks = travelled.summary["ticks"].get<std::uint64_t>();
+    EXPECT_NEAR(double(ticks), 220.0, 2.0) << "320 frames less the 100 ticks gone back";
+    EXPECT_EQ(travelled.summary["history"]["newest_tick"].get<std::uint64_t>(), ticks);
+    const Result straight = run_app(common + "--frames " + std::to_string(ticks) + " --script " + quote(plain.string()));
+    ASSERT_EQ(straight.exit_code, 0) << straight.err;
+    ASSERT_EQ(straight.summary["ticks"].get<std::uint64_t>(), ticks);
+    EXPECT_EQ(travelled.summary["state_hash"], straight.summary["state_hash"]);
+    EXPECT_LT(straight.summary["com"][0].get<double>(), 0.0) << "the drag should have flung the sphere back";
+
+    const Result stepped = run_app(common + "--frames 170 --script " + quote(steps.string()));
+    ASSERT_EQ(stepped.exit_code, 0) << stepped.err;
+    const auto paused_at = stepped.summary["ticks"].get<std::uint64_t>();
+    const Result reference = run_app(common + "--frames " + std::to_string(paused_at) + " --script " + quote(plain.string()));
+    EXPECT_EQ(stepped.summary["state_hash"], reference.summary["state_hash"]);
+}
+
 TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     const fs::path preset = scratch() / "presets" / "mine.json";
     fs::remove_all(preset.parent_path());
