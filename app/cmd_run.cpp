@@ -66,6 +66,12 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
     } else if (command.verb == "inspect") {
         if (args[0] == "none") demo.stop_inspecting();
         else demo.inspect_particle(0, static_cast<std::uint32_t>(std::stoul(args[0])));
+    } else if (command.verb == "compare") {
+        std::vector<Comparison> others;
+        if (args[0] != "off") {
+            for (const std::string& a : args) others.push_back(*parse_comparison(a));
+        }
+        demo.compare(others);
     } else if (command.verb == "rewind") {
         demo.rewind(std::stod(args[0]));
     } else if (command.verb == "step_back") {
@@ -210,6 +216,20 @@ int run_command(int argc, char** argv, int first) {
         {"rigid_bodies", rigid_bodies_json(world)},
         {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
+    // The integrator comparison: each world's integrator, substeps and total energy now.
+    if (demo->comparing()) {
+        const auto entry = [](World& w) {
+            char h[17];
+            std::snprintf(h, sizeof h, "%016" PRIx64, w.state_hash());
+            return nlohmann::ordered_json{{"integrator", std::string(to_string(w.params().integrator))}, {"substeps", w.substeps_in_use()},
+                                          {"ticks", w.ticks()}, {"status", w.status() == Status::Ok ? "ok" : "diverged"},
+                                          {"total_energy", w.energy().total()}, {"state_hash", h}};
+        };
+        nlohmann::ordered_json worlds = nlohmann::ordered_json::array();
+        worlds.push_back(entry(demo->world()));
+        for (const ComparedWorld& c : demo->compared()) worlds.push_back(entry(*c.world));
+        out["compared"] = worlds;
+    }
     // The timeline: what the record holds.
     const History& history = demo->history();
     out["history"] = {{"oldest_tick", history.oldest_tick()}, {"newest_tick", history.newest_tick()},

@@ -58,6 +58,7 @@ void Demo::after_load(const Scene& scene) {
     clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
     energy_.clear();
     last_collision_.reset();
+    compared_.clear();  // a new scene: one world again
     stop_inspecting();
     match_ground(scene.params, appearance);
     frame_body();
@@ -104,26 +105,95 @@ bool Demo::save_preset(const std::string& path, bool overwrite) {
 }
 
 void Demo::reset() {
+    std::vector<Comparison> setups;
+    for (const ComparedWorld& c : compared_) setups.push_back(c.setup);
+    compared_.clear();  // made again below, once the main world is back at its start
     if (scene_.rigid_bodies != built_rigid_bodies_) {
         // Rigid bodies' keys that apply at reset: the world is made again from the scene.
         const Scene scene = this->scene();
         const std::string source = source_;
-        if (load(scene)) source_ = source;
-        return;
+        if (!load(scene)) return;
+        source_ = source;
+    } else {
+        world_->reset();
+        scene_.params = world_->params();
+        clock_.reset();
+        energy_.clear();
+        last_collision_.reset();
+        sample_energy();
+        history_.start(*world_);
     }
-    world_->reset();
-    scene_.params = world_->params();
-    clock_.reset();
+    if (setups.empty()) return;
+    for (const Comparison& setup : setups) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
+    build_compared();
+}
+
+glm::vec3 integrator_color(Integrator integrator) {
+    switch (integrator) {
+        case Integrator::Verlet: return {0.93f, 0.45f, 0.24f};           // orange, the demo's own
+        case Integrator::SymplecticEuler: return {0.24f, 0.52f, 0.86f};  // blue
+        case Integrator::ExplicitEuler: return {0.66f, 0.36f, 0.84f};    // purple
+        case Integrator::RK4: return {0.32f, 0.72f, 0.40f};              // green
+    }
+    return {0.5f, 0.5f, 0.5f};
+}
+
+bool Demo::compare(const std::vector<Comparison>& others) {
+    if (others.size() > 3) {
+        error_ = "compare: at most three integrators beside the main world's";
+        return false;
+    }
+    compared_.clear();
+    if (others.empty()) {  // back to one world, where it is
+        frame_body();
+        return true;
+    }
+    for (const Comparison& setup : others) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
+    reset();  // the main world from t = 0, and the copies built beside it
+    return compared_.size() == others.size();
+}
+
+Params Demo::compared_params(const ComparedWorld& copy, Params params) const {
+    params.integrator = copy.setup.integrator;
+    params.auto_substeps = copy.setup.auto_substeps;
+    if (!copy.setup.auto_substeps) params.substeps = copy.setup.substeps;
+    return params;
+}
+
+bool Demo::build_compared() {
+    const Scene base = scene();
+    // Side by side across the view, each a few body sizes from the last.
+    const WorldBounds bounds = world_bounds(*world_);
+    const float spacing = 3.5f * std::max(bounds.radius, 0.3f);
+    glm::vec3 across = glm::cross(camera.forward(), glm::vec3(0.0f, 0.0f, 1.0f));
+    across.z = 0.0f;
+    across = glm::length(across) > 1e-3f ? glm::normalize(across) : glm::vec3(1.0f, 0.0f, 0.0f);
+    try {
+        for (std::size_t k = 0; k < compared_.size(); ++k) {
+            ComparedWorld& c = compared_[k];
+            Scene scene = base;
+            scene.params = compared_params(c, base.params);
+            c.world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+            c.history.start(*c.world);
+            c.offset = across * (spacing * float(k + 1));
+            c.color = integrator_color(c.setup.integrator);
+        }
+    } catch (const std::exception& e) {
+        compared_.clear();
+        error_ = std::string("compare: ") + e.what();
+        return false;
+    }
     energy_.clear();
-    last_collision_.reset();
     sample_energy();
-    history_.start(*world_);
+    frame_body();
+    return true;
 }
 
 void Demo::edit(const Params& params) {
     try {
         if (!(params == world_->params())) changed();
         world_->set_params(params);
+        for (ComparedWorld& c : compared_) c.world->set_params(compared_params(c, params));
         clock_.set_dt(params.dt);
         match_ground(params, appearance);
     } catch (const std::exception& e) {
@@ -138,6 +208,7 @@ void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
         changed();
         scene_.rigid_bodies[index] = def;
         world_->set_rigid_material(index, def.restitution, def.friction);
+        for (ComparedWorld& c : compared_) c.world->set_rigid_material(index, def.restitution, def.friction);
     } catch (const std::exception& e) {
         error_ = e.what();
     }
@@ -209,15 +280,26 @@ void Demo::tick_once() {
     history_.before_tick(*world_);
     world_->tick();
     history_.after_tick(*world_);
+    // The compared worlds in lockstep (each replaying its own record when in the past).
+    for (ComparedWorld& c : compared_) {
+        if (c.world->status() != Status::Ok) continue;
+        c.history.before_tick(*c.world);
+        c.world->tick();
+        c.history.after_tick(*c.world);
+    }
     note_collision();
     if (replaying) after_travel();
 }
 
-void Demo::changed() { history_.branch(*world_); }
+void Demo::changed() {
+    history_.branch(*world_);
+    for (ComparedWorld& c : compared_) c.history.branch(*c.world);
+}
 
 void Demo::go_to_tick(std::uint64_t tick) {
     paused = true;
     history_.go_to(*world_, tick);
+    for (ComparedWorld& c : compared_) c.history.go_to(*c.world, tick);
     // The energy plot and the last collision come back with the world; the plot is cut at now.
     while (energy_.size() > 1 && energy_.back().time > world_->time() + 1e-9) energy_.pop_back();
     if (!energy_.empty() && energy_.back().time > world_->time() + 1e-9) energy_.clear();
@@ -272,15 +354,27 @@ void Demo::note_collision() {
 
 void Demo::sample_energy() {
     const Energy e = world_->energy();
+    std::vector<double> compared;
+    for (ComparedWorld& c : compared_) compared.push_back(c.world->energy().total());
     energy_.push_back({world_->time(), e.kinetic, e.gravity, e.elastic, e.total(), e.rotational,
-                       length(world_->angular_momentum())});
+                       length(world_->angular_momentum()), std::move(compared)});
     while (energy_.size() > kEnergySamples) energy_.pop_front();
 }
 
 void Demo::frame_body() {
     const float aspect = view_aspect_, shift = view_shift_;
     // Frame the bodies and the ground below them, so the whole fall is in view.
-    const WorldBounds bounds = world_bounds(*world_);
+    WorldBounds bounds = world_bounds(*world_);
+    if (comparing() && !compare_overlaid) {
+        // The copies beside it too: the sphere around all of them.
+        glm::vec3 low = bounds.centre - bounds.radius, high = bounds.centre + bounds.radius;
+        for (const ComparedWorld& c : compared_) {
+            low = glm::min(low, bounds.centre + c.offset - bounds.radius);
+            high = glm::max(high, bounds.centre + c.offset + bounds.radius);
+        }
+        bounds.centre = 0.5f * (low + high);
+        bounds.radius = 0.5f * glm::length(high - low);
+    }
     const glm::vec3 com = bounds.centre;
     const float radius = std::max(bounds.radius, 0.25f);
     const float ground = params().ground_height;
@@ -346,6 +440,33 @@ render::Frame Demo::make_frame() const {
     frame.camera = camera;
     frame.overlays = overlays;
     frame.appearance = appearance;
+    if (comparing()) {
+        // Every world in its integrator's colour, the copies beside the main one (or over it).
+        const float alpha = paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha());
+        const glm::vec3 own = integrator_color(w.params().integrator);
+        for (render::BodyView& v : frame.soft_bodies) v.color = own;
+        for (render::RigidBodyView& v : frame.rigid_bodies) {
+            if (!v.fixed) v.color = own;
+        }
+        for (const ComparedWorld& c : compared_) {
+            const glm::vec3 offset = compare_overlaid ? glm::vec3(0.0f) : c.offset;
+            const World& copy = *c.world;
+            const float a = copy.status() == Status::Ok ? alpha : 1.0f;
+            for (std::size_t b = 0; b < copy.soft_body_count(); ++b) {
+                render::BodyView v = soft_body_view(copy.soft_body(b), a);
+                v.offset = offset;
+                v.color = c.color;
+                frame.soft_bodies.push_back(v);
+            }
+            for (std::size_t b = 0; b < copy.rigid_body_count(); ++b) {
+                render::RigidBodyView v = rigid_body_view(copy, b, a);
+                v.position += offset;
+                v.previous_position += offset;
+                if (!v.fixed) v.color = c.color;
+                frame.rigid_bodies.push_back(v);
+            }
+        }
+    }
     if (const auto& grab = w.grab()) {
         frame.overlays.grab = true;
         frame.overlays.grab_target = to_glm(grab->target);
@@ -501,6 +622,11 @@ void Demo::toggle_pin(std::uint32_t particle) {
     scene_.params.pinned = params.pinned;
     world_->set_pinned(particle, pin);
     history_.keyframe_now(*world_);  // a pin is part of the state, not of a tick's inputs
+    for (ComparedWorld& c : compared_) {
+        c.world->set_params(compared_params(c, params));
+        c.world->set_pinned(particle, pin);
+        c.history.keyframe_now(*c.world);
+    }
 }
 
 }  // namespace softbody::app

@@ -23,7 +23,25 @@ struct EnergySample {
     double time, kinetic, gravity, elastic, total;
     double rotational;        // the rigid bodies' part of the kinetic energy
     double angular_momentum;  // |L| about the origin, every body
+    std::vector<double> compared;  // each compared world's total (Demo::compared()), in order
 };
+
+// One more world in the integrator comparison: the same scene, another integrator (with its
+// own substeps), stepped in lockstep with the main one and drawn beside it in its own colour.
+struct Comparison {
+    Integrator integrator = Integrator::ExplicitEuler;
+    bool auto_substeps = true;
+    int substeps = 1;  // when not automatic
+};
+struct ComparedWorld {
+    Comparison setup;
+    std::unique_ptr<World> world;
+    History history;
+    glm::vec3 offset{0.0f};  // where it is drawn, from the main world, m
+    glm::vec3 color{0.5f};   // sRGB
+};
+// Each integrator's colour in the comparison (the main world's too).
+glm::vec3 integrator_color(Integrator integrator);
 
 // The hardest hit of the latest tick that had one: Eq. 38 term by term for its main point.
 struct LastCollision {
@@ -84,6 +102,17 @@ public:
     const History& history() const { return history_; }
     bool in_past() const { return history_.in_past(*world_); }
 
+    // --- Comparing integrators --------------------------------------------------------------
+    // Starts the scene again from t = 0 beside one to three copies of it, each with its own
+    // integrator and substeps, ticked in lockstep with the main world (the mouse's grab acts
+    // on the main world alone; keys, pins, resets and the timeline act on all). Drawn side by
+    // side (or overlaid) in each integrator's colour. Empty: back to one world. False and
+    // error() when a copy cannot be made.
+    bool compare(const std::vector<Comparison>& others);
+    const std::vector<ComparedWorld>& compared() const { return compared_; }
+    bool comparing() const { return !compared_.empty(); }
+    bool compare_overlaid = false;  // draw the copies over the main world instead of beside it
+
     // --- What the panels show ------------------------------------------------------------------
     World& world() { return *world_; }
     const World& world() const { return *world_; }
@@ -138,12 +167,15 @@ private:
     void tick_once();       // one tick, recorded or replayed
     void changed();         // the user changed the world: in the past, the recorded future is dropped
     void after_travel();    // the panels' records follow the world to its new moment
+    Params compared_params(const ComparedWorld& copy, Params params) const;  // its integrator and substeps
+    bool build_compared();  // the copies from the scene as it stands, at the main world's tick 0
 
     std::unique_ptr<World> world_;
     Scene scene_;            // what the current world was built from (its params kept by the world)
     std::vector<RigidBodyDef> built_rigid_bodies_;  // the rigid bodies as the world was built
     FixedClock clock_;
     History history_;
+    std::vector<ComparedWorld> compared_;
     std::string error_;
     std::string source_;
     std::deque<EnergySample> energy_;

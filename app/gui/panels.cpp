@@ -113,6 +113,7 @@ void Panels::draw(Demo& demo, float fps) {
     }
     if (ImGui::CollapsingHeader("Stability", ImGuiTreeNodeFlags_DefaultOpen)) stability(demo);
     if (ImGui::CollapsingHeader("Energy", ImGuiTreeNodeFlags_DefaultOpen)) energy(demo);
+    if (ImGui::CollapsingHeader("Compare integrators", demo.comparing() ? ImGuiTreeNodeFlags_DefaultOpen : 0)) compare(demo);
     if (demo.world().rigid_body_count() > 0 && ImGui::CollapsingHeader("Last collision", ImGuiTreeNodeFlags_DefaultOpen)) {
         last_collision(demo);
     }
@@ -271,6 +272,114 @@ void Panels::energy(Demo& demo) {
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Total angular momentum about the origin, every body: conserved without torques.");
     }
     ImGui::TextDisabled("last %.0f s, from %.1f to %.1f J", t1 - t0, lo, hi);
+    if (demo.comparing()) energy_by_integrator(demo);
+}
+
+// Total energy of each compared world, in its integrator's colour, on one scale.
+void Panels::energy_by_integrator(Demo& demo) {
+    const auto& history = demo.energy_history();
+    const auto& compared = demo.compared();
+    const std::size_t worlds = compared.size() + 1;
+    const auto total = [](const EnergySample& s, std::size_t k) { return k == 0 ? s.total : s.compared[k - 1]; };
+    double lo = 1e300, hi = -1e300;
+    for (const auto& s : history) {
+        if (s.compared.size() + 1 != worlds) continue;
+        for (std::size_t k = 0; k < worlds; ++k) {
+            if (!std::isfinite(total(s, k))) continue;
+            lo = std::min(lo, total(s, k));
+            hi = std::max(hi, total(s, k));
+        }
+    }
+    if (lo > hi) return;
+    if (hi - lo < 1e-9) hi = lo + 1.0;
+    ImGui::TextUnformatted("total energy by integrator");
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 90 * scale_);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
+    const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
+    for (std::size_t k = 0; k < worlds; ++k) {
+        const Integrator integrator = k == 0 ? demo.params().integrator : compared[k - 1].setup.integrator;
+        const glm::vec3 c = integrator_color(integrator);
+        std::vector<ImVec2> points;
+        for (const auto& s : history) {
+            if (s.compared.size() + 1 != worlds || !std::isfinite(total(s, k))) continue;
+            points.emplace_back(origin.x + float((s.time - t0) / (t1 - t0)) * size.x,
+                                origin.y + size.y - float((total(s, k) - lo) / (hi - lo)) * size.y);
+        }
+        draw->AddPolyline(points.data(), static_cast<int>(points.size()), ImColor(c.r, c.g, c.b), 0, 2.0f);
+    }
+    ImGui::Dummy(size);
+    ImGui::TextDisabled("from %.1f to %.1f J", lo, hi);
+}
+
+// Up to four integrators on the same scene at once: which ones, each one's substeps, and
+// what each is doing now.
+void Panels::compare(Demo& demo) {
+    constexpr Integrator kAll[4] = {Integrator::Verlet, Integrator::SymplecticEuler, Integrator::ExplicitEuler, Integrator::RK4};
+    const Integrator main = demo.params().integrator;
+    const auto swatch = [](Integrator integrator) {
+        const glm::vec3 c = integrator_color(integrator);
+        ImGui::ColorButton("##colour", ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+        ImGui::SameLine();
+    };
+    if (!demo.comparing()) {
+        ImGui::TextWrapped("The scene again from t = 0, beside copies of itself stepped by other integrators.");
+        swatch(main);
+        ImGui::Text("%s (this world's; Parameters)", std::string(to_string(main)).c_str());
+        std::vector<Comparison> others;
+        for (int k = 0; k < 4; ++k) {
+            if (kAll[k] == main) continue;
+            ImGui::PushID(k);
+            swatch(kAll[k]);
+            ImGui::Checkbox(std::string(to_string(kAll[k])).c_str(), &compare_pick_[k]);
+            ImGui::SameLine(200 * scale_);
+            ImGui::SetNextItemWidth(90 * scale_);
+            ImGui::SliderInt("##substeps", &compare_substeps_[k], 0, 16, compare_substeps_[k] == 0 ? "auto" : "%d substeps");
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Its substeps a tick: 0 is automatic (what stability needs).");
+            ImGui::PopID();
+            if (compare_pick_[k]) others.push_back({kAll[k], compare_substeps_[k] == 0, std::max(1, compare_substeps_[k])});
+        }
+        ImGui::BeginDisabled(others.empty());
+        if (ImGui::Button("Compare")) demo.compare(others);
+        ImGui::EndDisabled();
+        return;
+    }
+    // Running: a row each, with its energy now against the plot's first sample.
+    const auto& history = demo.energy_history();
+    if (!history.empty() && ImGui::BeginTable("compared", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        ImGui::TableSetupColumn("integrator");
+        ImGui::TableSetupColumn("substeps");
+        ImGui::TableSetupColumn("E, J");
+        ImGui::TableSetupColumn("change");
+        ImGui::TableHeadersRow();
+        const auto row = [&](Integrator integrator, const World& world, double start, double now) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            swatch(integrator);
+            ImGui::TextUnformatted(std::string(to_string(integrator)).c_str());
+            ImGui::TableSetColumnIndex(1);
+            ImGui::Text("%d", world.substeps_in_use());
+            ImGui::TableSetColumnIndex(2);
+            ImGui::Text("%.4g", now);
+            ImGui::TableSetColumnIndex(3);
+            if (world.status() != Status::Ok) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "diverged");
+            else ImGui::Text("%+.2f%%", start != 0.0 ? 100.0 * (now - start) / std::abs(start) : 0.0);
+        };
+        const EnergySample& first = history.front();
+        const EnergySample& last = history.back();
+        row(main, demo.world(), first.total, last.total);
+        for (std::size_t k = 0; k < demo.compared().size() && k < last.compared.size() && k < first.compared.size(); ++k) {
+            const ComparedWorld& c = demo.compared()[k];
+            row(c.setup.integrator, *c.world, first.compared[k], last.compared[k]);
+        }
+        ImGui::EndTable();
+    }
+    if (ImGui::Checkbox("overlaid", &demo.compare_overlaid)) demo.frame_body();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Draw the copies over this world instead of beside it.");
+    ImGui::SameLine();
+    if (ImGui::Button("Stop comparing")) demo.compare({});
+    ImGui::TextWrapped("The mouse grabs the first world only; keys, pins, Reset and the timeline act on all.");
 }
 
 void Panels::parameters(Demo& demo) {

@@ -1,5 +1,5 @@
 // The Dear ImGui panels of the demo: Simulation, Parameters, Mesh, Display, Energy, Stability,
-// Rigid bodies, Last collision, Presets, and the help overlay. They read and edit the Demo; they own only UI state.
+// Rigid bodies, Last collision, Compare integrators, Presets, and the help overlay. They read and edit the Demo; they own only UI state.
 #pragma once
 
 #include <string>
@@ -31,6 +31,8 @@ private:
     void inspector(Demo& demo);
     void display(Demo& demo);
     void energy(Demo& demo);
+    void energy_by_integrator(Demo& demo);
+    void compare(Demo& demo);
     void stability(Demo& demo);
     void presets(Demo& demo);
     void help();
@@ -42,6 +44,8 @@ private:
     char preset_path_[1024] = {};
     std::string confirm_overwrite_;             // path awaiting "overwrite?" (empty: none)
     int rigid_selected_ = 0;                    // the rigid body the panel shows
+    bool compare_pick_[4] = {false, true, true, false};  // integrators to compare (params.h order)
+    int compare_substeps_[4] = {0, 0, 0, 0};             // each one's substeps; 0: automatic
 };
 
 }  // namespace softbody::app

@@ -39,6 +39,20 @@ bool to_float(const std::string& text, float& out) {
 
 }  // namespace
 
+std::optional<Comparison> parse_comparison(const std::string& text) {
+    const auto colon = text.find(':');
+    const auto integrator = integrator_from_string(text.substr(0, colon));
+    if (!integrator) return std::nullopt;
+    Comparison c{*integrator, true, 1};
+    if (colon != std::string::npos) {
+        const std::string n = text.substr(colon + 1);
+        const auto [last, error] = std::from_chars(n.data(), n.data() + n.size(), c.substeps);
+        if (error != std::errc() || last != n.data() + n.size() || c.substeps < 1 || c.substeps > 1000) return std::nullopt;
+        c.auto_substeps = false;
+    }
+    return c;
+}
+
 std::vector<ScriptCommand> load_script(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw InputError(path + ": cannot open the script");
@@ -105,6 +119,15 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
                 std::uint32_t particle = 0;
                 const auto [last, error] = std::from_chars(args[0].data(), args[0].data() + args[0].size(), particle);
                 if (error != std::errc() || last != args[0].data() + args[0].size()) fail("inspect needs a particle number, or none");
+            }
+            command.verb = verb;
+        } else if (verb == "compare") {
+            // compare off | compare INTEGRATOR[:SUBSTEPS] ... (one to three)
+            if (args.empty() || args.size() > 3) fail("compare needs one to three integrators (each NAME or NAME:SUBSTEPS), or off");
+            if (!(args.size() == 1 && args[0] == "off")) {
+                for (const std::string& a : args) {
+                    if (!parse_comparison(a)) fail("compare: '" + a + "' is not an integrator (verlet, symplectic_euler, explicit_euler, rk4), optionally :SUBSTEPS");
+                }
             }
             command.verb = verb;
         } else if (verb == "rewind") {

@@ -11,6 +11,7 @@
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
 //   92       inspect 12                 the inspector on particle 12 of the first soft body (or none)
+//   96       compare explicit_euler rk4:2   integrators beside the main world (NAME[:SUBSTEPS]), or off
 //   93       rewind 2.0                 back 2 s on the timeline (paused there; play goes on)
 //   94       step_back                  one tick back
 //   95       reset | pause | play
@@ -20,9 +21,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "gui/demo.h"
 #include "gui/input.h"
 
 namespace softbody::app {
@@ -34,6 +37,9 @@ struct ScriptCommand {
     std::vector<std::string> args;
     std::size_t line = 0;
 };
+
+// "explicit_euler" or "rk4:4" (four substeps a tick; without a number, automatic).
+std::optional<Comparison> parse_comparison(const std::string& text);
 
 // Throws InputError naming the file and line of anything it cannot read.
 std::vector<ScriptCommand> load_script(const std::string& path);

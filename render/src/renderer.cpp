@@ -90,6 +90,7 @@ struct SoftDraw {
     std::vector<glm::vec3> full;                // a reduced body's full-resolution particles
     DeformedSurface surface;
     BodyShape shape;
+    glm::vec3 color{1.0f};
     bool has_surface = false;
 };
 
@@ -331,8 +332,9 @@ void Renderer::State::prepare_soft(const Frame& frame) {
     for (std::size_t b = 0; b < soft.size(); ++b) {
         const BodyView& view = frame.soft_bodies[b];
         SoftDraw& d = soft[b];
-        interpolate_positions(view, frame.debug.body_offset, d.particles);
+        interpolate_positions(view, frame.debug.body_offset + view.offset, d.particles);
         d.shape = measure_body(d.particles, view.rest_positions);
+        d.color = view.color.value_or(look.body_color);
         const bool skinned = view.surface && !view.skin.empty() && !frame.debug.particle_mesh;
         const Mesh* drawn = skinned ? view.surface : view.mesh;
         d.has_surface = drawn && drawn->triangle_count() > 0 && look.body != BodyStyle::Hidden &&
@@ -659,7 +661,7 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     };
     const auto draw_soft = [&](float opacity, bool two_sided) {
         for (const SoftDraw& d : s.soft) {
-            if (d.has_surface) draw_body(d.gpu, identity, identity3, look.body_color, std::max(d.shape.rest_radius, 1e-3f), opacity, two_sided);
+            if (d.has_surface) draw_body(d.gpu, identity, identity3, d.color, std::max(d.shape.rest_radius, 1e-3f), opacity, two_sided);
         }
     };
     // A closed body hides its back faces (they would fight with the front ones when it is
@@ -669,7 +671,7 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
             if (!d.has_surface) continue;
             if (d.gpu.closed) glEnable(GL_CULL_FACE);
             glCullFace(GL_BACK);
-            draw_body(d.gpu, identity, identity3, look.body_color, std::max(d.shape.rest_radius, 1e-3f), 1.0f, false);
+            draw_body(d.gpu, identity, identity3, d.color, std::max(d.shape.rest_radius, 1e-3f), 1.0f, false);
             glDisable(GL_CULL_FACE);
         }
     }

@@ -201,6 +201,26 @@ TEST(App, ScrubbingBackAndPlayingOnGivesTheSameEnd) {
     EXPECT_EQ(stepped.summary["state_hash"], reference.summary["state_hash"]);
 }
 
+// Comparing integrators: the default sphere with Verlet beside a copy stepped by explicit
+// Euler (each at its own automatic substeps). Both run in lockstep; the bounce takes energy
+// from both, but explicit Euler's springs pump energy in at every step, so after 3 s its total
+// stands well above Verlet's (measured: 148 J against 80 J).
+TEST(App, ComparedIntegratorsRunInLockstepAndExplicitEulerEndsAboveVerlet) {
+    const fs::path script = write_script("compare.script", "1 compare explicit_euler\n");
+    const Result r = run_app("--size 480x300 --frame-time 0.02 --frames 150 --script " + quote(script.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(r.summary.contains("compared")) << r.out;
+    const auto& worlds = r.summary["compared"];
+    ASSERT_EQ(worlds.size(), 2u);
+    EXPECT_EQ(worlds[0]["integrator"], "verlet");
+    EXPECT_EQ(worlds[1]["integrator"], "explicit_euler");
+    EXPECT_EQ(worlds[0]["ticks"], worlds[1]["ticks"]);
+    EXPECT_EQ(worlds[0]["ticks"], r.summary["ticks"]);
+    EXPECT_EQ(worlds[1]["status"], "ok");
+    const double verlet = worlds[0]["total_energy"].get<double>(), euler = worlds[1]["total_energy"].get<double>();
+    EXPECT_GT(euler, 1.2 * verlet) << "explicit Euler " << euler << " J, Verlet " << verlet << " J";
+}
+
 TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     const fs::path preset = scratch() / "presets" / "mine.json";
     fs::remove_all(preset.parent_path());

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct BodyView {
     Vec3Span forces;               // net force on each particle, N: for the force arrows
     Vec3Span rest_positions;       // for the springs' strain colours
     std::span<const float> inverse_masses;  // 0 marks a pinned particle
+    // Drawn shifted and in a colour of its own (the integrator comparison's side-by-side bodies);
+    // no colour: the appearance's body colour.
+    glm::vec3 offset{0.0f};
+    std::optional<glm::vec3> color;
 };
 
 // A rigid body as it is this frame: its mesh in its own axes (about its centre of mass), and
