@@ -180,6 +180,7 @@ void Demo::advance(double wall_seconds) {
     for (int t = 0; t < ticks && world_->status() == Status::Ok; ++t) {
         world_->tick();
         note_collision();
+        if (on_tick) on_tick(*world_);
         ++ticks_last_frame_;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -197,6 +198,7 @@ void Demo::single_tick() {
     if (world_->status() != Status::Ok) return;
     world_->tick();
     note_collision();
+    if (on_tick) on_tick(*world_);
     ticks_last_frame_ = 1;
     if (world_->status() != Status::Ok) error_ = world_->divergence();
     sample_energy();

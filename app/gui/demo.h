@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -73,6 +74,7 @@ public:
     bool paused = false;
     double time_scale = 1.0;
     int max_ticks_per_frame = 8;
+    std::function<void(const World&)> on_tick;  // after every tick (the Lesson panel measures)
 
     // --- What the panels show ------------------------------------------------------------------
     World& world() { return *world_; }

@@ -107,6 +107,9 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
                 if (ec != std::errc() || end != args[0].data() + args[0].size()) fail("inspect needs a particle number, or none");
             }
             command.verb = verb;
+        } else if (verb == "lesson") {
+            if (args.size() != 1 || args[0].empty() || args[0].size() > 4 || args[0].find_first_not_of("0123456789") != std::string::npos) fail("lesson needs a number (softbody lessons)");
+            command.verb = verb;
         } else if (verb == "reset" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");
             if (verb == "loop" && command.frame == 0) fail("loop needs a frame after 0");

@@ -11,6 +11,7 @@
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
 //   92       inspect 12                 the inspector on particle 12 of the first soft body (or none)
+//   94       lesson 3                   open lesson 3, as the Lessons menu does
 //   95       reset | pause | play
 //   400      loop                       start the script again (from its frame 0) here
 //
