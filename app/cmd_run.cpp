@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "gui/demo.h"
 #include "gui/input.h"
+#include "gui/lesson_panel.h"
 #include "gui/panels.h"
 #include "gui/script.h"
 #include "gui/window.h"
@@ -67,15 +68,17 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
         if (args[0] == "none") demo.stop_inspecting();
         else demo.inspect_particle(0, static_cast<std::uint32_t>(std::stoul(args[0])));
     } else if (command.verb == "compare") {
-        std::vector<Comparison> others;
+        std::vector<CompareSetup> others;
         if (args[0] != "off") {
-            for (const std::string& a : args) others.push_back(*parse_comparison(a));
+            for (const std::string& a : args) others.push_back(*parse_compare_setup(a));
         }
         demo.compare(others);
     } else if (command.verb == "rewind") {
         demo.rewind(std::stod(args[0]));
     } else if (command.verb == "step_back") {
         demo.step_back();
+    } else if (command.verb == "lesson") {
+        open_lesson(demo, std::size_t(std::stoul(args[0])));
     } else if (command.verb == "pause") {
         demo.paused = true;
     } else if (command.verb == "play") {
@@ -141,6 +144,7 @@ int run_command(int argc, char** argv, int first) {
     Window window(window_options);
     render::Renderer renderer(reinterpret_cast<render::Loader>(glfwGetProcAddress));
     Panels panels(window.content_scale());
+    panels.lesson.attach(*demo);
     Controls controls;
     // The panels cover the left of the window: frame the body in the rest of it.
     auto panel_shift = [&] {
@@ -244,6 +248,7 @@ int run_command(int argc, char** argv, int first) {
         out["inspection"] = {{"particle", in->particle}, {"x", {in->x.x, in->x.y, in->x.z}}, {"v", {in->v.x, in->v.y, in->v.z}},
                              {"terms", terms}, {"net", {in->net.x, in->net.y, in->net.z}}, {"on_ground", in->on_ground}};
     }
+    if (auto lesson = panels.lesson.summary(*demo); !lesson.is_null()) out["lesson"] = std::move(lesson);
     // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.
     const ResidentMemory end = resident_memory();
     out["memory_kib"] = {{"after_warmup", after_warmup.now_kib}, {"peak_after_warmup", after_warmup.peak_kib},

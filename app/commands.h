@@ -7,5 +7,6 @@ int run_command(int argc, char** argv, int first);  // softbody [run] ...: the d
 int simulate_command(int argc, char** argv);  // softbody simulate ...: no window, no GL
 int render_command(int argc, char** argv);    // softbody render ...: PNGs, headless (OSMesa)
 int bench_command(int argc, char** argv);     // softbody bench ...: physics timings, no GL
+int lessons_command(int argc, char** argv);   // softbody lessons [--json]: the lessons in order
 
 }  // namespace softbody::app

@@ -3,6 +3,7 @@
 //   softbody                       the interactive demo with the default scene
 //   softbody run [options]         the interactive demo with a chosen scene
 //   softbody simulate [options]    physics only, prints a JSON summary
+//   softbody lessons [--json]      the lessons, in the addendum's order
 //
 // Each subcommand lives in its own cmd_*.cpp; this file only dispatches and turns errors into
 // one line on stderr and an exit code.
@@ -23,6 +24,7 @@ constexpr const char* kUsage =
     "                         [--dump FILE.csv] [--dump-every K] [--threads N]\n"
     "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR [options]\n"
     "       softbody bench [--quick] [--json] [--sizes N,N,...] [options]\n"
+    "       softbody lessons [--json]\n"
     "Run 'softbody <command> --help' for a command's options.";
 
 int dispatch(int argc, char** argv) {
@@ -33,6 +35,7 @@ int dispatch(int argc, char** argv) {
     if (command == "simulate") return simulate_command(argc, argv);
     if (command == "render") return render_command(argc, argv);
     if (command == "bench") return bench_command(argc, argv);
+    if (command == "lessons") return lessons_command(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
         std::cout << kUsage << "\n";
         return kOk;
@@ -51,7 +54,7 @@ int main(int argc, char** argv) {
         std::string message = e.what();
         message = message.substr(0, message.find('\n'));
         const std::string_view first = argc > 1 ? argv[1] : "";
-        const bool known = first == "simulate" || first == "render" || first == "bench" || first == "run";
+        const bool known = first == "simulate" || first == "render" || first == "bench" || first == "run" || first == "lessons";
         const std::string command = known ? " " + std::string(first) : "";
         std::cerr << "softbody: " << message << " (see 'softbody" << command << " --help')\n";
         return kBadInput;

@@ -105,7 +105,7 @@ bool Demo::save_preset(const std::string& path, bool overwrite) {
 }
 
 void Demo::reset() {
-    std::vector<Comparison> setups;
+    std::vector<CompareSetup> setups;
     for (const ComparedWorld& c : compared_) setups.push_back(c.setup);
     compared_.clear();  // made again below, once the main world is back at its start
     if (scene_.rigid_bodies != built_rigid_bodies_) {
@@ -124,7 +124,7 @@ void Demo::reset() {
         history_.start(*world_);
     }
     if (setups.empty()) return;
-    for (const Comparison& setup : setups) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
+    for (const CompareSetup& setup : setups) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
     build_compared();
 }
 
@@ -138,7 +138,7 @@ glm::vec3 integrator_color(Integrator integrator) {
     return {0.5f, 0.5f, 0.5f};
 }
 
-bool Demo::compare(const std::vector<Comparison>& others) {
+bool Demo::compare(const std::vector<CompareSetup>& others) {
     if (others.size() > 3) {
         error_ = "compare: at most three integrators beside the main world's";
         return false;
@@ -148,7 +148,7 @@ bool Demo::compare(const std::vector<Comparison>& others) {
         frame_body();
         return true;
     }
-    for (const Comparison& setup : others) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
+    for (const CompareSetup& setup : others) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
     reset();  // the main world from t = 0, and the copies built beside it
     return compared_.size() == others.size();
 }
@@ -280,6 +280,7 @@ void Demo::tick_once() {
     history_.before_tick(*world_);
     world_->tick();
     history_.after_tick(*world_);
+    if (on_tick) on_tick(*world_);
     // The compared worlds in lockstep (each replaying its own record when in the past).
     for (ComparedWorld& c : compared_) {
         if (c.world->status() != Status::Ok) continue;

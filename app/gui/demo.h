@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,13 +29,13 @@ struct EnergySample {
 
 // One more world in the integrator comparison: the same scene, another integrator (with its
 // own substeps), stepped in lockstep with the main one and drawn beside it in its own colour.
-struct Comparison {
+struct CompareSetup {
     Integrator integrator = Integrator::ExplicitEuler;
     bool auto_substeps = true;
     int substeps = 1;  // when not automatic
 };
 struct ComparedWorld {
-    Comparison setup;
+    CompareSetup setup;
     std::unique_ptr<World> world;
     History history;
     glm::vec3 offset{0.0f};  // where it is drawn, from the main world, m
@@ -92,6 +93,7 @@ public:
     bool paused = false;
     double time_scale = 1.0;
     int max_ticks_per_frame = 8;
+    std::function<void(const World&)> on_tick;  // after every tick (the Lesson panel measures)
 
     // --- Time travel: the last 1,000 ticks (20 s) are kept (physics/history.h) ------------------
     // Going to a recorded tick pauses there; play goes on from it (replaying what was recorded,
@@ -108,7 +110,7 @@ public:
     // on the main world alone; keys, pins, resets and the timeline act on all). Drawn side by
     // side (or overlaid) in each integrator's colour. Empty: back to one world. False and
     // error() when a copy cannot be made.
-    bool compare(const std::vector<Comparison>& others);
+    bool compare(const std::vector<CompareSetup>& others);
     const std::vector<ComparedWorld>& compared() const { return compared_; }
     bool comparing() const { return !compared_.empty(); }
     bool compare_overlaid = false;  // draw the copies over the main world instead of beside it

@@ -107,6 +107,7 @@ void Panels::draw(Demo& demo, float fps) {
     ImGui::SetNextWindowSize(ImVec2(360 * scale_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
     ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-150 * scale_);
+    lesson.draw(demo, scale_);
     if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) simulation(demo, fps);
     if (demo.particle_inspection() || demo.rigid_inspection()) {
         if (ImGui::CollapsingHeader("Inspector", ImGuiTreeNodeFlags_DefaultOpen)) inspector(demo);
@@ -327,7 +328,7 @@ void Panels::compare(Demo& demo) {
         ImGui::TextWrapped("The scene again from t = 0, beside copies of itself stepped by other integrators.");
         swatch(main);
         ImGui::Text("%s (this world's; Parameters)", std::string(to_string(main)).c_str());
-        std::vector<Comparison> others;
+        std::vector<CompareSetup> others;
         for (int k = 0; k < 4; ++k) {
             if (kAll[k] == main) continue;
             ImGui::PushID(k);

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "gui/lesson_panel.h"
+
 namespace softbody::app {
 
 class Demo;
@@ -20,6 +22,7 @@ public:
 
     bool show_help = false;
     bool show_panels = true;
+    LessonPanel lesson;  // the Lessons menu and the Lesson panel (lesson_panel.h)
 
 private:
     void simulation(Demo& demo, float fps);

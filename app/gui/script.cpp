@@ -39,11 +39,11 @@ bool to_float(const std::string& text, float& out) {
 
 }  // namespace
 
-std::optional<Comparison> parse_comparison(const std::string& text) {
+std::optional<CompareSetup> parse_compare_setup(const std::string& text) {
     const auto colon = text.find(':');
     const auto integrator = integrator_from_string(text.substr(0, colon));
     if (!integrator) return std::nullopt;
-    Comparison c{*integrator, true, 1};
+    CompareSetup c{*integrator, true, 1};
     if (colon != std::string::npos) {
         const std::string n = text.substr(colon + 1);
         const auto [last, error] = std::from_chars(n.data(), n.data() + n.size(), c.substeps);
@@ -126,13 +126,16 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             if (args.empty() || args.size() > 3) fail("compare needs one to three integrators (each NAME or NAME:SUBSTEPS), or off");
             if (!(args.size() == 1 && args[0] == "off")) {
                 for (const std::string& a : args) {
-                    if (!parse_comparison(a)) fail("compare: '" + a + "' is not an integrator (verlet, symplectic_euler, explicit_euler, rk4), optionally :SUBSTEPS");
+                    if (!parse_compare_setup(a)) fail("compare: '" + a + "' is not an integrator (verlet, symplectic_euler, explicit_euler, rk4), optionally :SUBSTEPS");
                 }
             }
             command.verb = verb;
         } else if (verb == "rewind") {
             float seconds = 0.0f;
             if (args.size() != 1 || !to_float(args[0], seconds) || seconds < 0.0f) fail("rewind needs a number of seconds, 0 or more");
+            command.verb = verb;
+        } else if (verb == "lesson") {
+            if (args.size() != 1 || args[0].empty() || args[0].size() > 4 || args[0].find_first_not_of("0123456789") != std::string::npos) fail("lesson needs a number (softbody lessons)");
             command.verb = verb;
         } else if (verb == "reset" || verb == "step_back" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");

@@ -11,9 +11,10 @@
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
 //   92       inspect 12                 the inspector on particle 12 of the first soft body (or none)
-//   96       compare explicit_euler rk4:2   integrators beside the main world (NAME[:SUBSTEPS]), or off
 //   93       rewind 2.0                 back 2 s on the timeline (paused there; play goes on)
 //   94       step_back                  one tick back
+//   94       lesson 3                   open lesson 3, as the Lessons menu does
+//   96       compare explicit_euler rk4:2   integrators beside the main world (NAME[:SUBSTEPS]), or off
 //   95       reset | pause | play
 //   400      loop                       start the script again (from its frame 0) here
 //
@@ -39,7 +40,7 @@ struct ScriptCommand {
 };
 
 // "explicit_euler" or "rk4:4" (four substeps a tick; without a number, automatic).
-std::optional<Comparison> parse_comparison(const std::string& text);
+std::optional<CompareSetup> parse_compare_setup(const std::string& text);
 
 // Throws InputError naming the file and line of anything it cannot read.
 std::vector<ScriptCommand> load_script(const std::string& path);

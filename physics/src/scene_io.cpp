@@ -15,6 +15,7 @@
 #include "message_text.h"
 #include "physics/error.h"
 #include "physics/generated.h"
+#include "physics/lesson.h"
 #include "text_file.h"
 
 namespace softbody {
@@ -301,6 +302,48 @@ SpringDef parse_spring(const json& element, const std::string& where) {
     return def;
 }
 
+// "expect": { "kind": ..., "body": ..., "slope": ... }, a lesson's closed form (lesson.h). The
+// names are checked against the scene's bodies once they are read (check_expect_names).
+LessonExpect parse_expect(const json& value, const std::string& where) {
+    const std::string what = where + ": key 'expect'";
+    std::string kinds;
+    for (const ClosedFormInfo& form : closed_forms()) kinds += (kinds.empty() ? "" : ", ") + std::string(form.kind);
+    if (!value.is_object()) {
+        throw InputError(what + ": expected an object {\"kind\": ..., \"body\": NAME}, got " + type_name(value));
+    }
+    LessonExpect expect;
+    for (const auto& [key, item] : value.items()) {
+        std::string* field = key == "kind" ? &expect.kind : key == "body" ? &expect.body : key == "slope" ? &expect.slope : nullptr;
+        if (!field) throw InputError(what + ": unknown key '" + printable(key) + "' (kind, body, slope)");
+        if (!item.is_string() || item.get<std::string>().empty()) {
+            throw InputError(what + ": \"" + key + "\" must be a non-empty string, got " + type_name(item));
+        }
+        *field = item.get<std::string>();
+    }
+    const ClosedFormInfo* form = find_closed_form(expect.kind);
+    if (expect.kind.empty()) throw InputError(what + ": needs a \"kind\" (" + kinds + ")");
+    if (!form) throw InputError(what + ": unknown kind '" + printable(expect.kind) + "' (" + kinds + ")");
+    if (expect.body.empty()) throw InputError(what + ": kind '" + expect.kind + "' needs a \"body\" (" + std::string(form->body) + ")");
+    if (!form->takes_slope && !expect.slope.empty()) throw InputError(what + ": kind '" + expect.kind + "' takes no \"slope\"");
+    return expect;
+}
+
+// The bodies "expect" names exist, of the kind its closed form reads.
+void check_expect_names(const Scene& scene, const std::string& where) {
+    const LessonExpect& expect = *scene.expect;
+    const ClosedFormInfo& form = *find_closed_form(expect.kind);
+    const auto rigid = [&](const std::string& name) {
+        return std::any_of(scene.rigid_bodies.begin(), scene.rigid_bodies.end(), [&](const RigidBodyDef& b) { return b.name == name; });
+    };
+    const std::vector<std::string> names = body_names(scene);
+    const bool exists = std::find(names.begin(), names.end(), expect.body) != names.end();
+    const std::string what = where + ": key 'expect': ";
+    if (!exists) throw InputError(what + "there is no body named '" + printable(expect.body) + "'");
+    if (form.rigid_body && !rigid(expect.body)) throw InputError(what + "'" + printable(expect.body) + "' must be a rigid body for '" + expect.kind + "'");
+    if (!form.rigid_body && rigid(expect.body)) throw InputError(what + "'" + printable(expect.body) + "' must be a soft body for '" + expect.kind + "'");
+    if (!expect.slope.empty() && !rigid(expect.slope)) throw InputError(what + "there is no rigid body named '" + printable(expect.slope) + "' (the slope)");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin, const Scene& base) {
@@ -345,11 +388,21 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
             if (!value.is_array()) throw InputError(where(origin, text, key) + ": \"" + key + "\" must be an array");
             continue;
         }
+        // A lesson's words and its closed form: for the reader and the lesson meter, not the physics.
+        if (key == "title" || key == "text") {
+            if (!value.is_string()) throw InputError(where(origin, text, key) + ": key '" + key + "': expected a string, got " + type_name(value));
+            (key == "title" ? scene.title : scene.text) = value.get<std::string>();
+            continue;
+        }
+        if (key == "expect") {
+            scene.expect = parse_expect(value, where(origin, text, key));
+            continue;
+        }
         const ParamInfo* info = find_param(key);
         if (!info) {
             std::string message = where(origin, text, key) + ": unknown key '" + printable(key) + "'";
             if (auto hint = closest_key(key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
-            else message += " (besides the keys of params: soft_bodies, rigid_bodies, springs)";
+            else message += " (besides the keys of params: soft_bodies, rigid_bodies, springs, title, text, expect)";
             throw InputError(message);
         }
         try {
@@ -418,6 +471,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
         throw InputError(where(origin, text, *twin) + ": two bodies are named '" + printable(*twin) +
                          "' (the soft body of the flat keys is 'body'); names must be unique");
     }
+    if (scene.expect) check_expect_names(scene, where(origin, text, "expect"));
     return scene;
 }
 
@@ -535,6 +589,13 @@ std::string scene_to_json(const Scene& scene) {
             list.push_back(object);
         }
         root["springs"] = list;
+    }
+    if (!scene.title.empty()) root["title"] = scene.title;
+    if (!scene.text.empty()) root["text"] = scene.text;
+    if (scene.expect) {
+        json expect = {{"kind", scene.expect->kind}, {"body", scene.expect->body}};
+        if (!scene.expect->slope.empty()) expect["slope"] = scene.expect->slope;
+        root["expect"] = expect;
     }
     // nlohmann's objects keep keys sorted, which keeps saved files stable and diffable.
     try {

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -301,4 +302,47 @@ TEST(App, SoakScriptLoopsAndEndsRunningWithFlatMemory) {
     ASSERT_TRUE(memory.is_object()) << r.out;
     EXPECT_GT(memory["after_warmup"].get<long>(), 0);
     EXPECT_LT(memory["end"].get<long>() - memory["after_warmup"].get<long>(), 16 * 1024);
+}
+
+// The Lessons menu, scripted ('lesson N' opens lesson N as the menu does): each lesson opens
+// in order with its title, runs, and none of its closed forms disagrees with the simulation;
+// the stability lesson diverges, as it predicts. Then the spring's period, measured live (every
+// tick, five a frame) over 7 s, against 2 pi sqrt(m / k).
+TEST(App, EachLessonOpensInOrderAndTheSpringKeepsItsPeriod) {
+    for (int n = 1; n <= 11; ++n) {
+        const fs::path script = write_script("lesson.script", "1 lesson " + std::to_string(n) + "\n");
+        // 30 frames of 0.04 s: 60 ticks, 1.2 s (a small window: software GL is the slow part).
+        const Result r = run_app("--size 480x300 --frames 30 --frame-time 0.04 --script " + quote(script.string()));
+        ASSERT_EQ(r.exit_code, 0) << "lesson " << n << ": " << r.err;
+        ASSERT_TRUE(r.summary.contains("lesson")) << "lesson " << n << ": " << r.out;
+        const auto& lesson = r.summary["lesson"];
+        EXPECT_EQ(lesson["number"], n);
+        EXPECT_FALSE(lesson["title"].get<std::string>().empty()) << n;
+        EXPECT_EQ(lesson["title"], r.summary["params"]["title"]) << n;
+        EXPECT_EQ(lesson["error"], "") << n;
+        EXPECT_GT(r.summary["ticks"].get<int>(), 0) << n;
+        if (n == 6) {
+            EXPECT_EQ(r.summary["status"], "diverged") << "the stability lesson should explode";
+        } else {
+            EXPECT_EQ(r.summary["status"], "ok") << n;
+            EXPECT_EQ(r.summary["error"], "") << n;
+        }
+        for (const auto& c : lesson["comparisons"]) {
+            EXPECT_NE(c["agrees"], false) << "lesson " << n << ": " << c.dump();
+        }
+    }
+    const fs::path script = write_script("spring.script", "1 lesson 1\n");
+    const Result r = run_app("--size 480x300 --frames 70 --frame-time 0.1 --script " + quote(script.string()));  // 7 s
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto& period = r.summary["lesson"]["comparisons"][0];
+    ASSERT_EQ(period["name"], "period") << r.out;
+    EXPECT_NEAR(period["predicted"].get<double>(), 2.0 * 3.14159265358979 * std::sqrt(1.0 / 40.0), 1e-9);
+    ASSERT_TRUE(period["measured"].is_number()) << r.out;
+    EXPECT_NEAR(period["measured"].get<double>(), period["predicted"].get<double>(), 0.01 * period["predicted"].get<double>());
+    EXPECT_EQ(period["agrees"], true);
+    // A lesson that does not exist: an error, not an exit.
+    const fs::path none = write_script("no_lesson.script", "1 lesson 99\n");
+    const Result missing = run_app("--frames 5 --script " + quote(none.string()));
+    ASSERT_EQ(missing.exit_code, 0) << missing.err;
+    EXPECT_NE(missing.summary["error"].get<std::string>().find("no lesson 99"), std::string::npos) << missing.out;
 }

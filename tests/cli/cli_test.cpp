@@ -441,3 +441,49 @@ TEST(Simulate, SameStateHashAtOneAndTwoThreads) {
 }
 
 }  // namespace
+
+// `softbody lessons`: the lessons in the addendum's order, in text and as JSON, each with its
+// number, title, scene file, equations and text; lessons with a closed form say which.
+TEST(Lessons, ListsTheLessonsInOrder) {
+    const Result text = run({"lessons"});
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_EQ(text.out.rfind(" 1. A single spring  (spring.json, Eq. 21)\n", 0), 0u) << text.out;
+    EXPECT_NE(text.out.find("11. Figure 7's collision  (figure7.json, Eq. 37, 38, Figure 7)"), std::string::npos) << text.out;
+
+    const Result listed = run({"lessons", "--json"});
+    ASSERT_EQ(listed.exit_code, 0) << listed.err;
+    const json out = json::parse(listed.out);
+    const std::vector<std::string> files = {"spring.json", "damper.json", "drag.json", "slope.json",
+                                            "listing8.json", "stability.json", "seesaw.json", "tumbling_box.json",
+                                            "quaternion.json", "intermediate_axis.json", "figure7.json"};
+    ASSERT_EQ(out["lessons"].size(), files.size());
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const json& lesson = out["lessons"][i];
+        EXPECT_EQ(lesson["number"], i + 1);
+        EXPECT_EQ(lesson["scene"], files[i]);
+        EXPECT_FALSE(lesson["title"].get<std::string>().empty());
+        EXPECT_NE(lesson["text"].get<std::string>().find("Try:"), std::string::npos) << files[i];
+        EXPECT_NE(text.out.find(lesson["title"].get<std::string>() + "  (" + files[i]), std::string::npos) << files[i];
+    }
+    EXPECT_EQ(out["lessons"][0]["expect"]["kind"], "spring_period");
+    EXPECT_EQ(out["lessons"][2]["expect"]["kind"], "terminal_velocity");
+    EXPECT_EQ(out["lessons"][3]["expect"]["kind"], "friction_slope");
+    EXPECT_EQ(out["lessons"][9]["expect"]["kind"], "flip_period");
+    EXPECT_FALSE(out["lessons"][6].contains("expect"));  // the seesaw has no closed form
+
+    const Result bad = run({"lessons", "--verbose"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
+// A bad "title" or "expect" in a scene: one line naming the file, the line and the key; exit 2.
+TEST(BadInput, BadLessonKeysNameFileLineAndKey) {
+    TempDir dir;
+    const std::string scene = dir.write("lesson.json",
+                                        "{\n  \"title\": \"A ball\",\n  \"expect\": {\"kind\": \"period\", \"body\": \"ball\"},\n"
+                                        "  \"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.1}]\n}\n");
+    const Result r = run({"simulate", "--scene", scene, "--ticks", "1"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("lesson.json:3: key 'expect': unknown kind 'period'"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}

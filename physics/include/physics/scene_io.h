@@ -5,10 +5,14 @@
 //   - "rigid_bodies": [ { "name": ..., "shape": ..., keys of rigid_body.h } ];
 //   - "springs": [ { "a": END, "b": END, "stiffness": k, "damping": c, "rest_length": l0 } ]
 //     with END { "body": NAME, "point": [x, y, z] }, { "body": NAME, "vertex": K } or
-//     { "point": [x, y, z] } (fixed in the world).
+//     { "point": [x, y, z] } (fixed in the world);
+//   - "title", "text": a lesson's name and what it shows (lesson.h); the physics never reads them;
+//   - "expect": { "kind": CLOSED_FORM, "body": NAME, "slope": NAME }: what a lesson compares
+//     with a closed form (lesson.h lists the kinds and what each needs).
 // See README.md, "Scene files", for every key.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,11 +30,22 @@ struct SoftBodyScene {
     bool operator==(const SoftBodyScene&) const = default;
 };
 
+// What a lesson compares with a closed form: the form's name (lesson.h, closed_forms()) and the
+// bodies it watches. Read by the lesson meter only, never by the physics.
+struct LessonExpect {
+    std::string kind;   // "spring_period", "terminal_velocity", ...
+    std::string body;   // the body it watches (a rigid body, or a soft body for friction_slope)
+    std::string slope;  // friction_slope: a fixed rigid body the body rests on ("": the ground)
+    bool operator==(const LessonExpect&) const = default;
+};
+
 struct Scene {
     Params params;                           // world keys, and the soft body "body" when params.mesh is set
     std::vector<SoftBodyScene> soft_bodies;  // more soft bodies
     std::vector<RigidBodyDef> rigid_bodies;
     std::vector<SpringDef> springs;
+    std::string title, text;              // a lesson's title and its short text (ignored by the physics)
+    std::optional<LessonExpect> expect;   // a lesson's closed form, if it has one
 
     Scene() = default;
     Scene(const Params& p) : params(p) {}  // NOLINT: a scene of one soft body (or none) converts implicitly
