@@ -8,6 +8,7 @@
 namespace softbody::app {
 
 class Demo;
+class Recorder;
 
 class Panels {
 public:
@@ -20,6 +21,7 @@ public:
 
     bool show_help = false;
     bool show_panels = true;
+    Recorder* recorder = nullptr;  // the Record button's (gui/recorder.h); none: no button
 
 private:
     void simulation(Demo& demo, float fps);
