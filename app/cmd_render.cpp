@@ -331,6 +331,10 @@ int render_command(int argc, char** argv) {
     // folder) before the first frame is drawn.
     std::unique_ptr<VideoWriter> writer;
     if (video) {
+        std::error_code ec;
+        if (!overwrite && std::filesystem::exists(std::filesystem::symlink_status(video_path, ec))) {
+            throw InputError(video_path + ": already exists; not overwriting it (--overwrite replaces it)");
+        }
         writer = std::make_unique<VideoWriter>(video_path, width, height, fps, overwrite);
         if (!writer->has_ffmpeg()) std::cerr << "softbody: " << writer->missing_ffmpeg_message() << "\n";
     } else {

@@ -93,7 +93,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
     std::error_code ec;
     if (fs::is_directory(target, ec)) throw InputError(path + ": is a folder; choose a file name");
     if (!overwrite && fs::exists(fs::symlink_status(target, ec))) {
-        throw InputError(path + ": already exists; not overwriting it (choose another name, or --overwrite)");
+        throw InputError(path + ": already exists; not overwriting it");
     }
     fs::path folder = target.parent_path();
     if (folder.empty()) folder = ".";
@@ -106,8 +106,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
         frame_stem_ = target.stem().string();
         frames_folder_ = (folder / (frame_stem_ + "_frames")).string();
         if (!overwrite && fs::exists(fs::symlink_status(frames_folder_, ec))) {
-            throw InputError(frames_folder_ + ": already exists; not overwriting the frames in it (ffmpeg is not "
-                             "installed, so the frames would go there; choose another name, or --overwrite)");
+            throw InputError(frames_folder_ + ": already exists; not overwriting the frames in it (without ffmpeg "
+                             "the frames would go there)");
         }
         fs::create_directories(frames_folder_, ec);
         if (ec || !fs::is_directory(frames_folder_)) {
