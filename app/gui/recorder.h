@@ -8,7 +8,8 @@
 //   shows a frame more than once; a fast one, or slow motion, skips frames; either way one
 //   second of the clip is one simulated second. While paused no simulated time passes, so
 //   nothing is recorded: the clip goes on from where it was when the simulation plays again
-//   (a single tick adds its 0.02 s). A reset or a newly loaded scene is a cut.
+//   (a single tick adds its 0.02 s). A reset, another scene or a step back on the timeline is
+//   a cut: the clip goes on from there.
 // - Where: softbody-YYYYMMDD-HHMMSS.mp4 in the current folder (-2, -3, ... when taken), never
 //   replacing a file; without ffmpeg the frames are PNGs in softbody-..._frames/ instead.
 #pragma once
