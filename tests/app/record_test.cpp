@@ -25,9 +25,16 @@ namespace {
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
+// This test process's scratch folder: removed when its test passes, kept to look at when not.
+fs::path scratch() { return fs::temp_directory_path() / ("softbody_record_tests_" + std::to_string(::getpid())); }
+
+void remove_scratch_if_passed() {
+    if (!::testing::Test::HasFailure()) fs::remove_all(scratch());
+}
+
 // A fresh folder to run the app in (recordings land in the current folder).
 fs::path fresh_folder(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("softbody_record_tests_" + std::to_string(::getpid())) / name;
+    const fs::path dir = scratch() / name;
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
@@ -124,6 +131,7 @@ TEST(Record, ButtonRecordsTheViewAtThirtyFramesPerSimulatedSecond) {
     EXPECT_TRUE(summary["recording"]["video"].get<bool>());
     EXPECT_LE(summary["recording"]["frames"].get<int>(), 8);
     EXPECT_EQ(summary["error"], "");
+    remove_scratch_if_passed();
 }
 
 TEST(Record, WithoutFfmpegTheFramesArePngsAndTheAppSaysSo) {
@@ -140,4 +148,5 @@ TEST(Record, WithoutFfmpegTheFramesArePngsAndTheAppSaysSo) {
     EXPECT_EQ(pngs.size(), summary["recording"]["frames"].get<std::size_t>());
     EXPECT_GE(pngs.size(), 12u);  // 9 frames of 0.05 s after the first: 0.45 simulated seconds
     EXPECT_EQ(summary["error"], "");
+    remove_scratch_if_passed();
 }
