@@ -6,6 +6,8 @@
 #                   and a few seconds of each fuzz target (clang, build-fuzz/)
 #   ./dev.sh soak   install, build, run the demo for 20,000 scripted frames (virtual display)
 # Everything comes from Debian's packages; nothing is downloaded from anywhere else.
+# ffmpeg is for videos: the app's Record button and `softbody render --video` run it (found at run
+# time; without it they write PNG frames), and the video tests read the clips back with ffprobe.
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -14,6 +16,7 @@ PACKAGES=(
   libglfw3-dev libglm-dev libimgui-dev libosmesa6-dev libtinyobjloader-dev python3-glad libstb-dev
   nlohmann-json3-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
+  ffmpeg
 )
 # Only `test` needs these: clang and its runtimes for the fuzz targets (libFuzzer).
 TEST_PACKAGES=(clang libclang-rt-14-dev)

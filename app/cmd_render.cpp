@@ -1,11 +1,13 @@
 // softbody render: simulates a scene from t = 0 at the fixed tick and writes one PNG per
 // requested time, rendered headless (OSMesa, no display). Same inputs, same bytes.
+// With --video the animation's frames go into one MP4 file instead (video.h: through ffmpeg).
 // One JSON line per image on stdout: time, tick, state_hash, file, and the resident memory
 // (a long sequence, --frames 2000 --fps 60, is the renderer's soak: the memory must stay flat).
 //
 // softbody render --bench measures the renderer instead (see render_bench below).
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +26,7 @@
 #include "commands.h"
 #include "offscreen_context.h"
 #include "process_memory.h"
+#include "video.h"
 #include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/world.h"
@@ -35,6 +39,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR\n"
     "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --frames N [--fps F] --out DIR\n"
+    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--frames N | --seconds T) [--fps F]\n"
+    "                       --video FILE.mp4 [--overwrite]\n"
     "                       [--size WxH] [--camera KEY=VALUE,...] [--overlay NAME,...] [--body STYLE]\n"
     "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--no-pattern] [--samples N]\n"
     "                       [--threads N]\n"
@@ -42,7 +48,11 @@ constexpr const char* kUsage =
     "  --at        times in seconds; each is drawn between the two ticks around it\n"
     "  --frames    N images at F per second from t = 0 (default --fps 60), DIR/<scene>_<frame>.png\n"
     "              numbered from 0 with leading zeros (an animation's frames, in name order)\n"
+    "  --seconds   as many frames as T seconds take at F per second (instead of --frames)\n"
     "  --out       folder for DIR/<scene>_t<time>.png (created if missing)\n"
+    "  --video     one H.264 MP4 video of the frames instead of PNGs, through ffmpeg ('sudo apt install\n"
+    "              ffmpeg'; without it the frames are PNGs in FILE_frames/ beside it); sides must be even\n"
+    "  --overwrite replace an existing video file (without it, one is never replaced)\n"
     "  --size      image size, 16..8192 each way (default 800x600)\n"
     "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
     "              target=X:Y:Z, follow (frame the body in every image; default: frame the\n"
@@ -218,8 +228,10 @@ int render_command(int argc, char** argv) {
     SceneOptions scene;
     std::vector<double> times;
     long sequence_frames = 0;
+    std::optional<double> seconds;
     double fps = 60.0;
-    std::string out_dir;
+    std::string out_dir, video_path;
+    bool overwrite = false;
     int width = 800, height = 600;
     CameraOptions camera_options;
     render::Frame frame;
@@ -232,6 +244,15 @@ int render_command(int argc, char** argv) {
             for (std::string_view t : split(args.value(option), ',')) times.push_back(parse_double(option, t, 0.0, 1e5));
         } else if (option == "--frames") {
             sequence_frames = parse_int(option, args.value(option), 1, 1000000);
+        } else if (option == "--seconds") {
+            seconds = parse_double(option, args.value(option), 0.0, 1e5);
+        } else if (option == "--video") {
+            video_path = args.value(option);
+            std::string extension = std::filesystem::path(video_path).extension().string();
+            std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+            if (extension != ".mp4") throw UsageError("--video: expected a file name ending in .mp4, got '" + video_path + "'");
+        } else if (option == "--overwrite") {
+            overwrite = true;
         } else if (option == "--fps") {
             fps = parse_double(option, args.value(option), 1.0, 1000.0);
         } else if (option == "--out") {
@@ -276,9 +297,20 @@ int render_command(int argc, char** argv) {
         }
     }
     if (sequence_frames > 0 && !times.empty()) throw UsageError("--at and --frames: give one or the other");
+    if (seconds && (sequence_frames > 0 || !times.empty())) throw UsageError("--seconds: give it instead of --frames or --at");
+    // T seconds at F frames a second: the frames at 0, 1/F, ... before T, so the clip lasts T.
+    if (seconds) sequence_frames = std::max(1L, long(std::ceil(*seconds * fps - 1e-9)));
+    const bool video = !video_path.empty();
+    if (video && !times.empty()) throw UsageError("--video needs --frames N or --seconds T (an animation), not --at");
+    if (video && !out_dir.empty()) throw UsageError("--video and --out: give one or the other (the frames go into the video)");
+    if (video && (width % 2 != 0 || height % 2 != 0)) {
+        throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
+                         ": a video needs even sides (H.264 stores colour at half resolution)");
+    }
+    if (overwrite && !video) throw UsageError("--overwrite goes with --video");
     for (long k = 0; k < sequence_frames; ++k) times.push_back(double(k) / fps);
     if (times.empty()) throw UsageError(std::string("--at T1,T2,... or --frames N is required\n") + kUsage);
-    if (out_dir.empty()) throw UsageError(std::string("--out DIR is required\n") + kUsage);
+    if (out_dir.empty() && !video) throw UsageError(std::string("--out DIR or --video FILE.mp4 is required\n") + kUsage);
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
 
@@ -295,7 +327,19 @@ int render_command(int argc, char** argv) {
         }
     }
     const std::filesystem::path dir(out_dir);
-    prepare_output(dir);
+    // The video refuses to replace a file and starts ffmpeg (or, without it, makes the frames'
+    // folder) before the first frame is drawn.
+    std::unique_ptr<VideoWriter> writer;
+    if (video) {
+        std::error_code ec;
+        if (!overwrite && std::filesystem::exists(std::filesystem::symlink_status(video_path, ec))) {
+            throw InputError(video_path + ": already exists; not overwriting it (--overwrite replaces it)");
+        }
+        writer = std::make_unique<VideoWriter>(video_path, width, height, fps, overwrite);
+        if (!writer->has_ffmpeg()) std::cerr << "softbody: " << writer->missing_ffmpeg_message() << "\n";
+    } else {
+        prepare_output(dir);
+    }
 
     OffscreenContext context(width, height);
     render::Renderer renderer(context.loader());
@@ -335,7 +379,12 @@ int render_command(int argc, char** argv) {
         const float alpha = n == 0 ? 1.0f : float(std::clamp(1.0 - (double(n) - ticks_exact), 0.0, 1.0));
         while (world.ticks() < n && world.status() == Status::Ok) world.tick();
         if (world.status() != Status::Ok) {
-            std::cerr << "softbody: the simulation diverged before t = " << t << " s: " << world.divergence() << "\n";
+            if (writer) writer->finish();  // the frames up to the divergence make a clip too
+            std::cerr << "softbody: the simulation diverged before t = " << t << " s: " << world.divergence()
+                      << (writer ? " (" + video_path + " has the " + std::to_string(writer->frames()) +
+                                       (writer->frames() == 1 ? " frame" : " frames") + " before it)"
+                                 : "")
+                      << "\n";
             return kDiverged;
         }
         world_view(world, alpha, frame);
@@ -344,12 +393,28 @@ int render_command(int argc, char** argv) {
             fix_camera();
         }
         renderer.draw(frame, width, height);
+        if (writer) {
+            writer->write(renderer.read_back());
+            continue;
+        }
         const std::filesystem::path file = dir / (name + "_" + label_of(k, t) + ".png");
         render::write_png(file.string(), renderer.read_back());
         nlohmann::ordered_json line = {
             {"time", t}, {"tick", world.ticks()}, {"alpha", alpha}, {"state_hash", hex(world.state_hash())},
             {"file", file.string()}, {"memory_kib", resident_memory().now_kib},
         };
+        std::cout << line.dump() << std::endl;
+    }
+    if (writer) {
+        // One line for the whole video: where it is (or where its frames are), and its shape.
+        writer->finish();
+        nlohmann::ordered_json line = {
+            {"video", writer->has_ffmpeg() ? nlohmann::ordered_json(video_path) : nlohmann::ordered_json(nullptr)},
+            {"frames", writer->frames()}, {"fps", fps}, {"seconds", double(writer->frames()) / fps},
+            {"width", width}, {"height", height}, {"tick", world.ticks()}, {"state_hash", hex(world.state_hash())},
+            {"memory_kib", resident_memory().now_kib},
+        };
+        if (!writer->has_ffmpeg()) line["frames_folder"] = writer->frames_folder();
         std::cout << line.dump() << std::endl;
     }
     return kOk;

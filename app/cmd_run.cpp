@@ -19,6 +19,7 @@
 #include "gui/input.h"
 #include "gui/lesson_panel.h"
 #include "gui/panels.h"
+#include "gui/recorder.h"
 #include "gui/script.h"
 #include "gui/window.h"
 #include "process_memory.h"
@@ -146,6 +147,8 @@ int run_command(int argc, char** argv, int first) {
     Panels panels(window.content_scale());
     panels.lesson.attach(*demo);
     Controls controls;
+    Recorder recorder;  // the Record button and the M key: the 3D view into a video
+    panels.recorder = &recorder;
     // The panels cover the left of the window: frame the body in the rest of it.
     auto panel_shift = [&] {
         return panels.show_panels ? 0.5f * panels.width() / float(std::max(1, window.framebuffer_width())) : 0.0f;
@@ -172,6 +175,7 @@ int run_command(int argc, char** argv, int first) {
             const UiRequests ui = controls.handle(*demo, event, width, height, ui_scale);
             panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
             if (ui.toggle_panels) panels.show_panels = !panels.show_panels;
+            if (ui.toggle_recording) recorder.toggle();
         }
         for (; next_command < script.size() && script[next_command].frame <= frame - script_start; ++next_command) {
             const ScriptCommand& command = script[next_command];
@@ -184,6 +188,10 @@ int run_command(int argc, char** argv, int first) {
                 const UiRequests ui = controls.handle(*demo, command.input, width, height, ui_scale);
                 panels.show_help = ui.toggle_help ? !panels.show_help : ui.close_help ? false : panels.show_help;
                 if (ui.toggle_panels) panels.show_panels = !panels.show_panels;
+                if (ui.toggle_recording) recorder.toggle();
+            } else if (command.verb == "record") {
+                if (command.args[0] == "stop") recorder.stop();
+                else recorder.start(command.args.size() == 2 ? command.args[1] : "");
             } else {
                 run_script_command(*demo, command);
             }
@@ -197,6 +205,9 @@ int run_command(int argc, char** argv, int first) {
 
         // Draw: the scene, then the UI over it.
         renderer.draw(demo->make_frame(), static_cast<int>(width), static_cast<int>(height), 0);
+        // Recording takes the 3D view now, before the UI is drawn over it, right of the panel.
+        recorder.frame(renderer, panels.show_panels ? static_cast<int>(panels.width()) : 0, demo->world().time());
+        if (std::string failure = recorder.take_error(); !failure.empty()) demo->set_error(failure);
         window.begin_ui_frame();
         panels.draw(*demo, scripted ? float(1.0 / frame_time) : io.Framerate);
         window.end_ui_frame();
@@ -206,6 +217,10 @@ int run_command(int argc, char** argv, int first) {
         window.swap_buffers();
         if (frame == kWarmupFrames) after_warmup = resident_memory();
     }
+
+    // A recording still going when the app closes is finished, not lost.
+    recorder.finish();
+    if (std::string failure = recorder.take_error(); !failure.empty()) demo->set_error(failure);
 
     // A summary for scripts and tests: what the session ended with.
     const World& world = demo->world();
@@ -249,6 +264,10 @@ int run_command(int argc, char** argv, int first) {
                              {"terms", terms}, {"net", {in->net.x, in->net.y, in->net.z}}, {"on_ground", in->on_ground}};
     }
     if (auto lesson = panels.lesson.summary(*demo); !lesson.is_null()) out["lesson"] = std::move(lesson);
+    if (const auto& recording = recorder.last()) {
+        out["recording"] = {{"path", recording->path}, {"video", recording->video}, {"frames", recording->frames},
+                            {"message", recording->message}};
+    }
     // Resident now and at its peak, after the warm-up and at the end: flat means the ends agree.
     const ResidentMemory end = resident_memory();
     out["memory_kib"] = {{"after_warmup", after_warmup.now_kib}, {"peak_after_warmup", after_warmup.peak_kib},

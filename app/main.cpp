@@ -23,6 +23,7 @@ constexpr const char* kUsage =
     "       softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
     "                         [--dump FILE.csv] [--dump-every K] [--threads N]\n"
     "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR [options]\n"
+    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --seconds T --video FILE.mp4 [options]\n"
     "       softbody bench [--quick] [--json] [--sizes N,N,...] [options]\n"
     "       softbody lessons [--json]\n"
     "Run 'softbody <command> --help' for a command's options.";

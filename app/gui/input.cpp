@@ -90,6 +90,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                 case GLFW_KEY_F1: ui.toggle_help = true; break;
                 case GLFW_KEY_ESCAPE: ui.close_help = true; break;
                 case GLFW_KEY_TAB: ui.toggle_panels = true; break;
+                case GLFW_KEY_M: ui.toggle_recording = true; break;
                 default: break;
             }
             break;

@@ -22,6 +22,7 @@ struct UiRequests {
     bool toggle_help = false;
     bool close_help = false;
     bool toggle_panels = false;
+    bool toggle_recording = false;
 };
 
 class Controls {

@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "gui/demo.h"
+#include "gui/recorder.h"
 #include "physics/pair_forces.h"
 #include "physics/rigid_body.h"
 #include "physics/scene_io.h"
@@ -159,6 +160,7 @@ void Panels::simulation(Demo& demo, float fps) {
     ImGui::Text("render %.0f FPS   %d threads", fps, world.threads());
     if (world.status() != Status::Ok) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "diverged: reset to go on");
     else if (demo.paused) ImGui::TextDisabled("paused");
+    if (recorder) recorder_controls(*recorder, demo.paused || world.status() != Status::Ok, scale_);
 }
 
 // The recorded past (physics/history.h): drag to any tick of it; play goes on from there.
@@ -782,6 +784,7 @@ void Panels::help() {
         {"N or .", "one tick"},
         {",", "one tick back (the timeline keeps the last 20 s)"},
         {"R", "reset"},
+        {"M", "record the view into a video / stop"},
         {"P  S  C  V  W", "particles, springs, centre of mass, velocities, omega and L"},
         {"Tab", "hide / show the panels"},
         {"H, F1 / Esc", "this help / close it"},

@@ -10,6 +10,7 @@
 namespace softbody::app {
 
 class Demo;
+class Recorder;
 
 class Panels {
 public:
@@ -23,6 +24,7 @@ public:
     bool show_help = false;
     bool show_panels = true;
     LessonPanel lesson;  // the Lessons menu and the Lesson panel (lesson_panel.h)
+    Recorder* recorder = nullptr;  // the Record button's (gui/recorder.h); none: no button
 
 private:
     void simulation(Demo& demo, float fps);

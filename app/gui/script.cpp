@@ -20,7 +20,7 @@ const std::map<std::string, int>& key_names() {
     static const std::map<std::string, int> keys = {
         {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"comma", GLFW_KEY_COMMA}, {"r", GLFW_KEY_R},
         {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
-        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
+        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"m", GLFW_KEY_M}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
     };
     return keys;
 }
@@ -99,7 +99,7 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             command.verb = "input";
         } else if (verb == "key") {
             e.type = InputEvent::Type::Key;
-            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period comma r f h f1 p s c v w tab escape");
+            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period comma r f h f1 p s c v w m tab escape");
             e.key = key_names().at(args[0]);
             command.verb = "input";
         } else if (verb == "set") {
@@ -136,6 +136,11 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             command.verb = verb;
         } else if (verb == "lesson") {
             if (args.size() != 1 || args[0].empty() || args[0].size() > 4 || args[0].find_first_not_of("0123456789") != std::string::npos) fail("lesson needs a number (softbody lessons)");
+            command.verb = verb;
+        } else if (verb == "record") {
+            if (args.empty() || args.size() > 2 || (args[0] != "start" && args[0] != "stop") || (args[0] == "stop" && args.size() == 2)) {
+                fail("record needs start [FILE.mp4] or stop");
+            }
             command.verb = verb;
         } else if (verb == "reset" || verb == "step_back" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");

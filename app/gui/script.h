@@ -5,7 +5,7 @@
 //   11       press     left [shift|ctrl]
 //   40       release   left
 //   50       scroll    -2               wheel clicks
-//   60       key       space            space n period comma r f h p s c v w tab escape
+//   60       key       space            space n period comma r f h p s c v w m tab escape
 //   70       set       stiffness 40     as --set, or a slider (plank.mass 7 for a named body)
 //   80       load_scene assets/scenes/pig.json
 //   81       load_mesh  my.obj
@@ -16,6 +16,7 @@
 //   94       lesson 3                   open lesson 3, as the Lessons menu does
 //   96       compare explicit_euler rk4:2   integrators beside the main world (NAME[:SUBSTEPS]), or off
 //   95       reset | pause | play
+//   96       record start [FILE.mp4] | record stop   the Record button (gui/recorder.h)
 //   400      loop                       start the script again (from its frame 0) here
 //
 // Events run at the start of their frame, in file order.
