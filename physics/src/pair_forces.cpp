@@ -1,8 +1,12 @@
 #include "physics/pair_forces.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <functional>
+#include <thread>
+#include <vector>
 
 #include "pair_tiles.h"
 
@@ -113,6 +117,27 @@ double stretch_tile_portable(const PackedParticles& p, std::size_t i0, std::size
     return sum;
 }
 
+float probe_portable(std::size_t rounds, float seed) {
+    // Half the chains of the SIMD probes: a multiply then an add (6 cycles or so) on 12 chains
+    // already keeps two multipliers and two adders busy, and 12 fit in the 16 registers.
+    static_assert(kProbeChains == 24);
+    const float b = 0.999f, c = 0.001f;
+    float a0 = seed, a1 = seed + 0.001f, a2 = seed + 0.002f, a3 = seed + 0.003f, a4 = seed + 0.004f,
+          a5 = seed + 0.005f, a6 = seed + 0.006f, a7 = seed + 0.007f, a8 = seed + 0.008f, a9 = seed + 0.009f,
+          a10 = seed + 0.010f, a11 = seed + 0.011f;
+    const auto step = [b, c](float& a) {
+        a = a * b + c;
+#if defined(__x86_64__) || defined(__i386__)
+        asm("" : "+x"(a));  // one float per register: keeps the compiler from packing chains into vectors
+#endif
+    };
+    for (std::size_t r = 0; r < rounds; ++r) {
+        step(a0), step(a1), step(a2), step(a3), step(a4), step(a5);
+        step(a6), step(a7), step(a8), step(a9), step(a10), step(a11);
+    }
+    return a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7 + a8 + a9 + a10 + a11;
+}
+
 }  // namespace detail
 
 namespace {
@@ -200,6 +225,64 @@ const char* PairForceKernel::name(PairKernelVariant variant) {
 
 PairForceKernel::PairForceKernel(ThreadPool& pool, PairKernelVariant variant)
     : pool_(pool), variant_(variant == PairKernelVariant::Auto || !supported(variant) ? best_variant() : variant) {}
+
+// Flops per pair, counted in the tiles as written (pair_tiles.h's formulas):
+//   e = x_i - x_j, w = v_i - v_j, q = r_i - r_j      9 subtractions                      9
+//   l^2 = e.e, |q|^2 = q.q, (w.e)                     3 x (a multiply + 2 multiply-adds)  15
+//   l^2 kept above the smallest normal float          1 max                               1
+//   (k/2) l0 = sqrt(|q|^2)                            1 square root                       1
+//   g = 2/l: approximate 1/sqrt, one Newton step      1 + multiply, multiply-add, multiply 5
+//   s = k - (k l0/2) g + (w.e) g^2                    multiply + 2 multiply-adds          5
+//   force on i (-= s e) and on j (+= s e)             6 multiply-adds                     12
+//                                                                                  total 48
+// The portable tile has no fused multiply-add (the build forbids fusing), and takes 2/l
+// as a square root and a division: the same 48, less the max and the Newton step's 4, is 44.
+int PairForceKernel::flops_per_pair(PairKernelVariant variant) {
+    return (variant == PairKernelVariant::Auto ? best_variant() : variant) == PairKernelVariant::Scalar ? 44 : 48;
+}
+
+double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, double seconds) {
+    if (variant == PairKernelVariant::Auto || !supported(variant)) variant = best_variant();
+    float (*probe)(std::size_t, float) = detail::probe_portable;
+    double lanes = 0.5;  // the portable probe runs half the chains, one float wide
+#if defined(SOFTBODY_HAVE_AVX512_TILE)
+    if (variant == PairKernelVariant::Avx512) probe = detail::probe_avx512, lanes = 16.0;
+#endif
+#if defined(SOFTBODY_HAVE_AVX2_TILE)
+    if (variant == PairKernelVariant::Avx2) probe = detail::probe_avx2, lanes = 8.0;
+#endif
+    // Bursts of a few microseconds: short enough that most of them run without the operating
+    // system taking the core away, long enough that the clock's resolution does not matter.
+    constexpr std::size_t kRounds = 2048;
+    const double flops_per_burst = double(kRounds) * double(detail::kProbeChains) * lanes * 2.0;
+    threads = std::max(1, threads);
+    std::vector<double> rate(std::size_t(threads), 0.0);
+    std::atomic<int> ready{0};
+    std::atomic<float> sink{0.0f};
+    auto measure = [&](int t) {
+        ready.fetch_add(1);
+        while (ready.load() < threads) {}  // start together: the threads share the chip's power and clock
+        std::vector<double> burst;
+        using Clock = std::chrono::steady_clock;
+        const auto start = Clock::now();
+        float seed = 0.5f + 0.01f * float(t);
+        do {
+            const auto t0 = Clock::now();
+            seed = 0.5f + 1e-3f * probe(kRounds, seed);
+            burst.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+        } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds || burst.size() < 5);
+        std::nth_element(burst.begin(), burst.begin() + std::ptrdiff_t(burst.size() / 2), burst.end());
+        rate[std::size_t(t)] = flops_per_burst / burst[burst.size() / 2];
+        sink.store(seed);
+    };
+    std::vector<std::thread> others;
+    for (int t = 1; t < threads; ++t) others.emplace_back(measure, t);
+    measure(0);
+    for (std::thread& thread : others) thread.join();
+    double total = 0.0;
+    for (double r : rate) total += r;
+    return total;
+}
 
 std::size_t PairForceKernel::memory_bytes(std::size_t n) {
     const std::size_t tiles = tile_count(n);

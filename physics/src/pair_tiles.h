@@ -48,13 +48,24 @@ void tile_portable(const PackedParticles& p, std::size_t i0, std::size_t i1, std
                    bool diagonal, float* out_i, float* out_j);
 double stretch_tile_portable(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                              bool diagonal);
+// The peak probe: `rounds` rounds of kProbeChains independent multiply-add chains
+// (a <- a b + c) at the tile's vector width, with the tile's own instructions (a fused
+// multiply-add on the SIMD tiles, a multiply and an add in the portable one). Chains that do
+// not wait on one another keep every multiply-add unit busy, so rounds x kProbeChains x lanes
+// x 2 flops over the time taken is the most this core can do at that width. Returns a value
+// that depends on every chain, so none is optimised away.
+inline constexpr std::size_t kProbeChains = 24;
+float probe_portable(std::size_t rounds, float seed);
+
 #if defined(SOFTBODY_HAVE_AVX2_TILE)
+float probe_avx2(std::size_t rounds, float seed);
 void tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                bool diagonal, float* out_i, float* out_j);
 double stretch_tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                          bool diagonal);
 #endif
 #if defined(SOFTBODY_HAVE_AVX512_TILE)
+float probe_avx512(std::size_t rounds, float seed);
 void tile_avx512(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                  bool diagonal, float* out_i, float* out_j);
 double stretch_tile_avx512(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,

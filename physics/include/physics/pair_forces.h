@@ -65,6 +65,19 @@ public:
     static PairKernelVariant best_variant();
     static const char* name(PairKernelVariant variant);
 
+    // Floating-point operations the variant's tile spends on one pair, counted as it executes
+    // them (a fused multiply-add is 2, a square root or an approximate reciprocal square
+    // root 1; the once-a-row lane sums and the masks of ragged vectors are left out). See
+    // pair_forces.cpp for the count, term by term.
+    static int flops_per_pair(PairKernelVariant variant);
+
+    // The peak of this CPU at the variant's vector width: flop/s of `threads` threads, each
+    // running independent multiply-add chains with the tile's instructions (pair_tiles.h) in
+    // short bursts for about `seconds`; each thread's rate is its median burst's, as the bench
+    // takes the median call. A pair rate times flops_per_pair over this is the fraction of the
+    // peak the tile reaches.
+    static double peak_flops(PairKernelVariant variant, int threads, double seconds);
+
     // Bytes the kernel keeps for n particles (packed copy of the state, per-tile partials):
     // O(n^2 / kBlock) for the partials, no per-pair storage.
     static std::size_t memory_bytes(std::size_t n);
