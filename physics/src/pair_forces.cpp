@@ -251,37 +251,55 @@ double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, doubl
 #if defined(SOFTBODY_HAVE_AVX2_TILE)
     if (variant == PairKernelVariant::Avx2) probe = detail::probe_avx2, lanes = 8.0;
 #endif
-    // Bursts of a few microseconds: short enough that most of them run without the operating
-    // system taking the core away, long enough that the clock's resolution does not matter.
+    // Rounds of short bursts, one per thread, each round timed from its start until every
+    // thread has finished its burst, as a call of the kernel is: a thread that the operating
+    // system takes away (or that shares its core with another) makes the round longer.
+    // Bursts of a few microseconds: short enough that most rounds run undisturbed, long enough
+    // that the clock's resolution does not matter. The median round gives the rate.
     constexpr std::size_t kRounds = 2048;
     const double flops_per_burst = double(kRounds) * double(detail::kProbeChains) * lanes * 2.0;
     threads = std::max(1, threads);
-    std::vector<double> rate(std::size_t(threads), 0.0);
-    std::atomic<int> ready{0};
+    std::atomic<long> round{0};
+    std::atomic<int> finished{0};
+    std::atomic<bool> stop{false};
     std::atomic<float> sink{0.0f};
-    auto measure = [&](int t) {
-        ready.fetch_add(1);
-        while (ready.load() < threads) {}  // start together: the threads share the chip's power and clock
-        std::vector<double> burst;
-        using Clock = std::chrono::steady_clock;
-        const auto start = Clock::now();
-        float seed = 0.5f + 0.01f * float(t);
-        do {
-            const auto t0 = Clock::now();
-            seed = 0.5f + 1e-3f * probe(kRounds, seed);
-            burst.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-        } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds || burst.size() < 5);
-        std::nth_element(burst.begin(), burst.begin() + std::ptrdiff_t(burst.size() / 2), burst.end());
-        rate[std::size_t(t)] = flops_per_burst / burst[burst.size() / 2];
-        sink.store(seed);
+    const auto wait_for = [](const auto& ready) {
+        for (unsigned i = 1; !ready(); ++i) {
+            if (i % 64 == 0) std::this_thread::yield();
+        }
     };
     std::vector<std::thread> others;
-    for (int t = 1; t < threads; ++t) others.emplace_back(measure, t);
-    measure(0);
+    for (int t = 1; t < threads; ++t) {
+        others.emplace_back([&, t] {
+            long seen = 0;
+            float seed = 0.5f + 0.01f * float(t);
+            for (;;) {
+                wait_for([&] { return stop.load() || round.load() != seen; });
+                if (stop.load()) break;
+                seen = round.load();
+                seed = 0.5f + 1e-3f * probe(kRounds, seed);
+                finished.fetch_add(1);
+            }
+            sink.store(seed);
+        });
+    }
+    using Clock = std::chrono::steady_clock;
+    std::vector<double> times;
+    float seed = 0.5f;
+    const auto start = Clock::now();
+    do {
+        finished.store(0);
+        const auto t0 = Clock::now();
+        round.fetch_add(1);
+        seed = 0.5f + 1e-3f * probe(kRounds, seed);
+        wait_for([&] { return finished.load() == threads - 1; });
+        times.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds || times.size() < 5);
+    stop.store(true);
     for (std::thread& thread : others) thread.join();
-    double total = 0.0;
-    for (double r : rate) total += r;
-    return total;
+    sink.store(seed);
+    std::nth_element(times.begin(), times.begin() + std::ptrdiff_t(times.size() / 2), times.end());
+    return double(threads) * flops_per_burst / times[times.size() / 2];
 }
 
 std::size_t PairForceKernel::memory_bytes(std::size_t n) {
