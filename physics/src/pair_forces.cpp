@@ -54,7 +54,8 @@ double elastic_energy_reference(const PairInput& in) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Fast kernel: the triangle of pairs (i < j) is cut into square tiles of kBlock x kBlock.
+// Fast kernel: the triangle of pairs (i < j) is cut into square tiles of B x B, B the block
+// size for this N (256, or 512 from PairForceKernel::kLargeBody particles on).
 // Each tile writes its partial forces into a buffer of its own; each block's total is then the
 // sum of its tiles' partials in a fixed order. Threads only choose which tile to do next, so
 // the sums, and the bits of the result, are the same for any number of threads.
@@ -142,8 +143,9 @@ float probe_portable(std::size_t rounds, float seed) {
 
 namespace {
 
-constexpr std::size_t B = PairForceKernel::kBlock;
-static_assert(B == detail::kTile && B % detail::kPad == 0);
+constexpr std::size_t T = detail::kTile;  // floats from one axis's partial forces to the next
+static_assert(PairForceKernel::kBlock % detail::kPad == 0 && PairForceKernel::kLargeBlock % detail::kPad == 0);
+static_assert(PairForceKernel::kBlock <= T && PairForceKernel::kLargeBlock <= T);
 
 detail::TileFunction tile_function(PairKernelVariant variant) {
     switch (variant) {
@@ -170,6 +172,7 @@ detail::StretchTileFunction stretch_tile_function(PairKernelVariant variant) {
 }
 
 std::size_t tile_count(std::size_t n) {
+    const std::size_t B = PairForceKernel::block_size(n);
     const std::size_t blocks = (n + B - 1) / B;
     return blocks * (blocks + 1) / 2;
 }
@@ -304,12 +307,14 @@ double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, doubl
 
 std::size_t PairForceKernel::memory_bytes(std::size_t n) {
     const std::size_t tiles = tile_count(n);
-    return sizeof(float) * (9 * padded(n) + tiles * 6 * B) + sizeof(std::size_t) * 3 * tiles + sizeof(double) * tiles;
+    return sizeof(float) * (9 * padded(n) + tiles * 6 * T) + sizeof(std::size_t) * 3 * tiles + sizeof(double) * tiles;
 }
 
 void PairForceKernel::prepare(std::size_t n) {
     if (n == n_ && !tile_i_.empty()) return;
     n_ = n;
+    block_ = block_size(n);
+    const std::size_t B = block_;
     blocks_ = (n + B - 1) / B;
     tile_i_.clear();
     tile_j_.clear();
@@ -329,7 +334,7 @@ void PairForceKernel::prepare(std::size_t n) {
     order_.resize(tile_i_.size());
     for (std::size_t t = 0; t < order_.size(); ++t) order_[t] = t;
     std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return pairs_in(a) > pairs_in(b); });
-    partial_.assign(tile_i_.size() * 6 * B, 0.0f);
+    partial_.assign(tile_i_.size() * 6 * T, 0.0f);
     partial_energy_.assign(tile_i_.size(), 0.0);
     stride_ = padded(n);
     packed_.assign(9 * stride_, 0.0f);
@@ -355,14 +360,15 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 0.25f * in.c, 0.5f * in.k);  // see pair_tiles.h
     const detail::TileFunction tile = tile_function(variant_);
+    const std::size_t B = block_;
     pool_.run(order_.size(), [&](std::size_t k) {
         const std::size_t t = order_[k];
-        float* out = partial_.data() + t * 6 * B;
-        std::fill(out, out + 6 * B, 0.0f);
+        float* out = partial_.data() + t * 6 * T;
+        for (std::size_t axis = 0; axis < 6; ++axis) std::fill(out + axis * T, out + axis * T + B, 0.0f);
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);
         const std::size_t j0 = J * B, j1 = std::min(j0 + B, in.n);
-        tile(p, i0, i1, j0, j1, I == J, out, I == J ? out : out + 3 * B);
+        tile(p, i0, i1, j0, j1, I == J, out, I == J ? out : out + 3 * T);
     });
     // Block b's total: its tiles (min(b,J), max(b,J)) for J = 0, 1, ... in that order.
     auto reduce = [&](std::size_t b) {
@@ -371,11 +377,11 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
             const std::size_t I = std::min(b, J), K = std::max(b, J);
             // index of tile (I, K) in the order prepare() lists them: row I holds blocks_ - I tiles
             const std::size_t t = I * (2 * blocks_ - I + 1) / 2 + (K - I);
-            const float* part = partial_.data() + t * 6 * B + (b == I ? 0 : 3 * B);
+            const float* part = partial_.data() + t * 6 * T + (b == I ? 0 : 3 * T);
             for (std::size_t q = p0; q < p1; ++q) {
                 f.x[q] += part[q - p0];
-                f.y[q] += part[B + q - p0];
-                f.z[q] += part[2 * B + q - p0];
+                f.y[q] += part[T + q - p0];
+                f.z[q] += part[2 * T + q - p0];
             }
         }
     };
@@ -388,6 +394,7 @@ double PairForceKernel::elastic_energy(const PairInput& in) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 1.0f, 1.0f);
     const detail::StretchTileFunction tile = stretch_tile_function(variant_);
+    const std::size_t B = block_;
     pool_.run(tile_i_.size(), [&](std::size_t t) {
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);

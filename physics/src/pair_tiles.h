@@ -28,11 +28,11 @@ struct PackedParticles {
 };
 
 inline constexpr std::size_t kPad = 16;       // widest SIMD lane count used
-inline constexpr std::size_t kTile = 256;     // particles per block; a multiple of kPad
+inline constexpr std::size_t kTile = 512;     // the largest block: floats from one axis's partial forces to the next
 inline constexpr float kMinLengthSq = 1.17549435e-38f;  // smallest normal float: below it, coincident
 
 // One tile: pairs (i, j) with i in [i0, i1), j in [j0, j1), and j > i when `diagonal` (then
-// i0 == j0). i0 and j0 are multiples of kTile. Adds the force on i to
+// i0 == j0). i0 and j0 are multiples of kPad; i1 - i0 and j1 - j0 at most kTile. Adds the force on i to
 // out_i[axis * kTile + (i - i0)] and the force on j to out_j[axis * kTile + (j - j0)]
 // (axis 0, 1, 2 = x, y, z); on a diagonal tile out_i == out_j.
 // Coincident particles (l^2 below kMinLengthSq) exert no force on each other.
