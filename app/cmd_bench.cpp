@@ -1,10 +1,15 @@
-// softbody bench: the physics alone, timed, on generated point clouds and on the bundled meshes.
+// softbody bench: the physics alone, timed, on the scenes the app opens: generated point
+// clouds (cloud:N, physics/generated.h), the bundled meshes through their scene files, and a
+// pile of rigid bodies with and without a cloud on it.
 //
-// For each size it times whole ticks (World::tick, dt = 0.02 s, the substeps stability needs)
-// with the fast pair kernel at 1 and at all threads, with the readable reference kernel, and
-// with "the baseline": a straightforward transcription of Listing 8 written below, kept here
-// only to measure against. Then it searches the largest cloud that still runs in real time,
-// and times the frame side (streaming positions and recomputing normals for 10,000 vertices).
+// First it measures this CPU's peak (PairForceKernel::peak_flops: multiply-add chains at each
+// vector width the pair kernel has a tile for, on 1 thread and on all). For each size it times
+// whole ticks (World::tick, dt = 0.02 s, the substeps stability needs) with the fast pair kernel
+// at 1 and at all threads, with the readable reference kernel, and with "the baseline": a
+// straightforward transcription of Listing 8 written below, kept here only to measure against.
+// It times the pair kernel alone for every tile variant and gives each its fraction of the
+// peak, then searches the largest cloud that still runs in real time. The frame side (streaming
+// positions and normals) is `softbody render --bench`'s, which times the renderer's own code.
 //
 // Every measurement runs in a child process of its own, so each row's peak memory
 // (getrusage's ru_maxrss) is that row's alone.
@@ -30,6 +35,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "physics/error.h"
+#include "physics/generated.h"
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
 #include "physics/scene_io.h"
@@ -45,14 +51,17 @@ constexpr const char* kUsage =
     "                      [--no-search]\n"
     "  --quick           a few seconds: small sizes, short measurements (for CI)\n"
     "  --json            print one JSON object instead of the tables\n"
-    "  --sizes           cloud sizes (default 500,1000,2500,5000,10000)\n"
+    "  --sizes           cloud sizes, as cloud:N scenes (default 500,1000,2500,5000,10000; --quick\n"
+    "                    500,1000,2500)\n"
     "  --seconds         wall time to spend on each measurement (default 1; --quick 0.15)\n"
     "  --threads         threads for the fast kernel's multi-threaded rows (default: all)\n"
     "  --baseline-max    largest N for the baseline transcription (default 5000: its N x N\n"
     "                    tables take 12 N^2 bytes, 1.2 GB at N = 10,000)\n"
     "  --reference-max   largest N for the reference kernel (default 10000)\n"
-    "  --no-kernels      skip the table of the pair kernel alone (every tile variant)\n"
-    "  --no-meshes       skip the bundled meshes\n"
+    "  --no-kernels      skip the table of the pair kernel alone (every tile variant) and the\n"
+    "                    peak probe\n"
+    "  --no-meshes       skip the bundled meshes (the scene files in assets/scenes with a soft body\n"
+    "                    and no rigid bodies)\n"
     "  --no-bodies       skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)\n"
     "  --no-search       skip the search for the largest real-time cloud";
 
@@ -148,69 +157,6 @@ private:
 }  // namespace baseline
 
 // =============================================================================================
-// The frame side, on the CPU: what a renderer does with the physics each frame.
-// =============================================================================================
-struct FrameVertex {
-    float px, py, pz, nx, ny, nz;
-};
-
-// Positions interpolated between the last two ticks (by alpha, the clock's leftover fraction),
-// streamed into the render vertices, with smooth normals: each normal slot sums the
-// area-weighted normals of the triangles whose corners use it, then is normalised.
-void stream_frame(const Mesh& mesh, const Vec3Array& previous, const Vec3Array& current, float alpha,
-                  std::vector<Vec3>& particle_position, std::vector<Vec3>& slot_normal, std::vector<FrameVertex>& out) {
-    const std::size_t n = current.size();
-    particle_position.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        particle_position[i] = {previous.x[i] + alpha * (current.x[i] - previous.x[i]),
-                                previous.y[i] + alpha * (current.y[i] - previous.y[i]),
-                                previous.z[i] + alpha * (current.z[i] - previous.z[i])};
-    }
-    slot_normal.assign(mesh.normal_slot_count, Vec3{});
-    const auto& rv = mesh.render_vertices;
-    for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-        const RenderVertex &a = rv[mesh.triangles[t]], &b = rv[mesh.triangles[t + 1]], &c = rv[mesh.triangles[t + 2]];
-        const Vec3 pa = particle_position[a.particle];
-        const Vec3 area_normal = cross(particle_position[b.particle] - pa, particle_position[c.particle] - pa);
-        slot_normal[a.normal_slot] += area_normal;
-        slot_normal[b.normal_slot] += area_normal;
-        slot_normal[c.normal_slot] += area_normal;
-    }
-    for (Vec3& normal : slot_normal) {
-        const float l = length(normal);
-        normal = l > 0.0f ? normal / l : Vec3{0.0f, 0.0f, 1.0f};
-    }
-    out.resize(rv.size());
-    for (std::size_t v = 0; v < rv.size(); ++v) {
-        const Vec3 p = particle_position[rv[v].particle], nrm = slot_normal[rv[v].normal_slot];
-        out[v] = {p.x, p.y, p.z, nrm.x, nrm.y, nrm.z};
-    }
-}
-
-// A closed torus of rings x segments vertices (10,000 for 100 x 100), 2 triangles per quad.
-Mesh torus_mesh(int rings, int segments) {
-    RawMesh raw;
-    for (int r = 0; r < rings; ++r) {
-        const float u = 2.0f * 3.14159265f * float(r) / float(rings);
-        for (int s = 0; s < segments; ++s) {
-            const float v = 2.0f * 3.14159265f * float(s) / float(segments);
-            raw.positions.push_back({(1.0f + 0.35f * std::cos(v)) * std::cos(u), (1.0f + 0.35f * std::cos(v)) * std::sin(u),
-                                     0.35f * std::sin(v)});
-        }
-    }
-    auto index = [&](int r, int s) { return ((r % rings) * segments + (s % segments)); };
-    for (int r = 0; r < rings; ++r) {
-        for (int s = 0; s < segments; ++s) {
-            for (int corner : {index(r, s), index(r + 1, s), index(r + 1, s + 1), index(r, s), index(r + 1, s + 1),
-                               index(r, s + 1)}) {
-                raw.triangle_corners.push_back(Corner{corner, -1, -1});
-            }
-        }
-    }
-    return build_mesh(raw, "torus");
-}
-
-// =============================================================================================
 // Measurements
 // =============================================================================================
 
@@ -302,44 +248,30 @@ void time_ticks(Measurement& m, const std::function<void()>& tick, const std::fu
     m.measured = 1;
 }
 
-// A cloud of n particles spread uniformly through a ball of radius 0.5 m (fixed seed).
-Mesh cloud_mesh(std::size_t n) {
-    std::mt19937 rng(20240601u + static_cast<unsigned>(n));
-    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
-    Mesh mesh;
-    mesh.source = "cloud of " + std::to_string(n);
-    while (mesh.positions.size() < n) {
-        const Vec3 p{u(rng), u(rng), u(rng)};
-        if (dot(p, p) <= 0.25f) mesh.positions.push_back(p);
-    }
-    for (std::size_t i = 0; i < n; ++i) mesh.vertex_to_particle.push_back(static_cast<std::uint32_t>(i));
-    return mesh;
-}
-
-Params bench_params() {
-    Params params;  // Listing 8's constants: m 1 kg, k 10 N/m, c 0.1 kg/s, dt 0.02 s
-    params.auto_substeps = true;
-    return params;
-}
-
 enum class Kernel { Fast, Reference, Baseline };
 
-// One tick-timing row: the World (fast or reference kernel) or the baseline, in a child.
-Measurement measure(Kernel kernel, const std::function<Mesh()>& make_mesh, int threads, double budget) {
+// One tick-timing row of a scene (a file, or a generated name such as cloud:2500 or pile:100):
+// the World with the fast or the reference kernel, or the baseline on the scene's soft body, in
+// a child. `settle` ticks run first, untimed (a pile's second of fall: the contacts busy).
+Measurement measure(Kernel kernel, const std::string& scene_name, int threads, double budget, int settle = 0) {
     return in_child([&]() {
         Measurement m;
-        const Params params = bench_params();
-        Mesh mesh = make_mesh();
-        const double n = double(mesh.particle_count());
-        if (kernel == Kernel::Baseline) {
-            // Same substeps as the World would pick, so the rows compare like with like.
-            World probe(params, mesh, WorldOptions{1, false});
-            const Stability s = probe.stability();
-            m.substeps = probe.substeps_in_use();
+        const Scene scene = load_scene(scene_name);
+        World world(make_world_def(scene), WorldOptions{threads, kernel == Kernel::Reference});
+        const double n = double(world.soft_body_count() ? world.particle_count() : 0);
+        m.substeps = world.substeps_in_use();
+        if (n > 0) {
+            const Stability s = world.stability();
             m.h_omega = s.h_omega;
             m.limit = s.limit;
-            std::vector<Vec3> positions = mesh.positions;
-            for (Vec3& p : positions) p.z += params.init_height;
+        }
+        if (kernel == Kernel::Baseline) {
+            // The scene's soft body where the World starts it, at the substeps the World picked,
+            // so the rows compare like with like.
+            const Params& params = scene.params;
+            const Vec3Array& x = world.positions();
+            std::vector<Vec3> positions(x.size());
+            for (std::size_t i = 0; i < x.size(); ++i) positions[i] = x[i];
             baseline::SoftBody body(positions, params.stiffness, params.damping, params.particle_mass);
             const float h = params.dt / float(m.substeps);
             const int substeps = m.substeps;
@@ -352,15 +284,11 @@ Measurement measure(Kernel kernel, const std::function<Mesh()>& make_mesh, int t
             if (!body.finite()) m.diverged = 1;
             return m;
         }
-        World world(params, std::move(mesh), WorldOptions{threads, kernel == Kernel::Reference});
         m.threads = world.threads();
-        m.substeps = world.substeps_in_use();
-        const Stability s = world.stability();
-        m.h_omega = s.h_omega;
-        m.limit = s.limit;
+        if (settle > 0) world.run(settle);
         time_ticks(
             m, [&] { world.tick(); }, [&] { return world.status() == Status::Ok; }, budget, kernel == Kernel::Fast ? 3 : 1,
-            20000, kernel == Kernel::Fast);
+            20000, kernel == Kernel::Fast && settle == 0);
         m.pairs_per_tick = m.substeps * n * (n - 1.0) / 2.0;
         m.evals_per_tick = m.pairs_per_tick;
         if (world.status() != Status::Ok) {
@@ -371,39 +299,14 @@ Measurement measure(Kernel kernel, const std::function<Mesh()>& make_mesh, int t
     });
 }
 
-// A generated scene's tick (physics/generated.h), rigid bodies and contacts with it, in a child.
-Measurement measure_scene(const std::string& name, int threads, double budget) {
-    return in_child([&]() {
-        Measurement m;
-        World world(make_world_def(load_scene(name)), WorldOptions{threads, false});
-        m.threads = world.threads();
-        m.substeps = world.substeps_in_use();
-        const double n = double(world.soft_body_count() ? world.particle_count() : 0);
-        if (n > 0) {
-            const Stability s = world.stability();
-            m.h_omega = s.h_omega;
-            m.limit = s.limit;
-        }
-        // A second's fall first: the bodies in the bin and on one another, the contacts busy.
-        world.run(50);
-        time_ticks(
-            m, [&] { world.tick(); }, [&] { return world.status() == Status::Ok; }, budget, 3, 20000, false);
-        m.pairs_per_tick = m.substeps * n * (n - 1.0) / 2.0;
-        m.evals_per_tick = m.pairs_per_tick;
-        if (world.status() != Status::Ok) {
-            m.diverged = 1;
-            std::snprintf(m.note, sizeof m.note, "%s", world.divergence().c_str());
-        }
-        return m;
-    });
-}
+std::string cloud(std::size_t n) { return "cloud:" + std::to_string(n); }
 
 // The pair kernel alone, one tile variant: compute() on a cloud displaced from rest and moving,
 // no tick around it. calls/ticks are force evaluations here.
 Measurement measure_kernel(PairKernelVariant variant, std::size_t n, int threads, double budget) {
     return in_child([&]() {
         Measurement m;
-        const Mesh mesh = cloud_mesh(n);
+        const Mesh mesh = generated_mesh(cloud(n));
         std::mt19937 rng(7u);
         std::uniform_real_distribution<float> u(-0.05f, 0.05f);
         Vec3Array x, v, r;
@@ -502,17 +405,32 @@ std::vector<std::size_t> parse_sizes(std::string_view text) {
     return sizes;
 }
 
-std::vector<std::string> bundled_meshes() {
+// The bundled scene files that show a mesh on its own: a soft body and no rigid bodies
+// (cow.json, knot.json, ...), as the app opens them.
+std::vector<std::string> bundled_mesh_scenes() {
     std::vector<std::string> files;
-    const std::filesystem::path folder = std::filesystem::path(assets_dir()) / "meshes";
+    const std::filesystem::path folder = std::filesystem::path(assets_dir()) / "scenes";
     std::error_code error;
     for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-        std::string ext = entry.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-        if (entry.is_regular_file() && (ext == ".obj" || ext == ".off")) files.push_back(entry.path().string());
+        if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path().string());
     }
     std::sort(files.begin(), files.end());
     return files;
+}
+
+// This CPU's peak at one variant's width, on `threads` threads.
+struct Peak {
+    PairKernelVariant variant;
+    int threads = 1;
+    double flops = 0.0;  // per second
+};
+
+const char* width_of(PairKernelVariant variant) {
+    switch (variant) {
+        case PairKernelVariant::Avx512: return "512-bit";
+        case PairKernelVariant::Avx2: return "256-bit";
+        default: return "scalar";
+    }
 }
 
 }  // namespace
@@ -550,7 +468,7 @@ int bench_command(int argc, char** argv) {
     if (reference_max < 0) reference_max = quick ? 1000 : 10000;
     const std::size_t mesh_max = quick ? 3000 : kMaxParticles;
 
-    const Params defaults = bench_params();
+    const Params defaults = load_scene(cloud(2)).params;  // what a cloud:N scene runs with: Listing 8's constants
     const double dt = defaults.dt;
     const std::string fast_name = std::string("fast (") + PairForceKernel::name(PairForceKernel::best_variant()) + ")";
     const auto bench_start = Clock::now();
@@ -580,33 +498,72 @@ int bench_command(int argc, char** argv) {
     std::vector<int> thread_counts{1};
     if (threads > 1) thread_counts.push_back(threads);
     for (std::size_t n : sizes) {
-        auto cloud = [n] { return cloud_mesh(n); };
-        for (int t : thread_counts) add({"cloud", n, fast_name, measure(Kernel::Fast, cloud, t, budget)});
-        if (n <= std::size_t(reference_max)) add({"cloud", n, "reference", measure(Kernel::Reference, cloud, 1, budget)});
-        if (n <= std::size_t(baseline_max)) add({"cloud", n, "baseline", measure(Kernel::Baseline, cloud, 1, budget)});
+        const std::string name = cloud(n);
+        for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, name, t, budget)});
+        if (n <= std::size_t(reference_max)) add({name, n, "reference", measure(Kernel::Reference, name, 1, budget)});
+        if (n <= std::size_t(baseline_max)) add({name, n, "baseline", measure(Kernel::Baseline, name, 1, budget)});
     }
 
-    // --- The pair kernel alone, every tile variant this CPU runs ---------------------------------
+    // --- The pair kernel alone, every tile variant this CPU runs, against this CPU's peak ---------
+    const std::vector<PairKernelVariant> variants = [] {
+        std::vector<PairKernelVariant> here;
+        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+            if (PairForceKernel::supported(v)) here.push_back(v);
+        }
+        return here;
+    }();
     nlohmann::ordered_json kernel_rows = nlohmann::ordered_json::array();
+    nlohmann::ordered_json peak_json = nlohmann::ordered_json::array();
     if (kernels) {
+        // The peak: independent multiply-add chains at each width, as the tiles issue them.
+        std::vector<Peak> peaks;
+        const double probe_seconds = quick ? 0.05 : 0.25;
+        for (PairKernelVariant v : variants) {
+            for (int t : thread_counts) peaks.push_back({v, t, PairForceKernel::peak_flops(v, t, probe_seconds)});
+        }
+        auto peak_of = [&](PairKernelVariant v, int t) {
+            for (const Peak& p : peaks) {
+                if (p.variant == v && p.threads == t) return p.flops;
+            }
+            return 0.0;
+        };
+        for (const Peak& p : peaks) {
+            peak_json.push_back({{"tiles", PairForceKernel::name(p.variant)}, {"width", width_of(p.variant)},
+                                 {"threads", p.threads}, {"gflops", p.flops / 1e9}});
+        }
         if (!json) {
-            std::cout << "\npair kernel alone (PairForceKernel::compute on a moving cloud, no tick around it):\n";
-            std::printf("%-8s %6s %3s %6s %19s %9s\n", "tiles", "N", "thr", "calls", "ms/call (best)", "pairs/s");
+            std::cout << "\nthis CPU's peak (independent multiply-add chains, " << (quick ? "0.05" : "0.25")
+                      << " s of short bursts per row, median burst; a fused multiply-add is 2 flops):\n";
+            for (const Peak& p : peaks) {
+                std::printf("  %-7s %-7s %d thread%s %8.1f GFLOP/s\n", width_of(p.variant), PairForceKernel::name(p.variant),
+                            p.threads, p.threads > 1 ? "s" : " ", p.flops / 1e9);
+            }
+            std::cout << "\npair kernel alone (PairForceKernel::compute on a moving cloud, no tick around it). flops/pair\n"
+                         "is counted in the tile as written (pair_forces.cpp): 9 subtractions, 3 dot products (l^2, |r_j - r_i|^2\n"
+                         "for the rest length, (v_j - v_i).d), a square root for l0, 1/sqrt(l^2) and its Newton step, the\n"
+                         "force scale, 6 multiply-adds onto the two particles; % peak = pairs/s x flops/pair over the peak\n"
+                         "of the tile's width at the same thread count:\n";
+            std::printf("%-8s %6s %3s %6s %19s %9s %6s %8s %7s\n", "tiles", "N", "thr", "calls", "ms/call (best)", "pairs/s",
+                        "flops", "GFLOP/s", "% peak");
         }
         for (std::size_t n : sizes) {
-            for (PairKernelVariant variant : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
-                if (!PairForceKernel::supported(variant)) continue;
+            for (PairKernelVariant variant : variants) {
                 for (int t : thread_counts) {
                     const Measurement m = measure_kernel(variant, n, t, 0.25 * budget);
                     const double rate = m.measured ? m.pairs_per_tick / m.median_s : 0.0;
+                    const int flops = PairForceKernel::flops_per_pair(variant);
+                    const double peak = peak_of(variant, t), gflops = rate * flops / 1e9;
+                    const double fraction = peak > 0.0 ? rate * flops / peak : 0.0;
                     kernel_rows.push_back({{"tiles", PairForceKernel::name(variant)}, {"particles", n}, {"threads", t},
                                            {"calls_measured", m.ticks}, {"ms_per_call_median", ms(m.median_s)},
-                                           {"ms_per_call_best", ms(m.best_s)}, {"pairs_per_second", rate}});
+                                           {"ms_per_call_best", ms(m.best_s)}, {"pairs_per_second", rate},
+                                           {"flops_per_pair", flops}, {"gflops", gflops}, {"peak_gflops", peak / 1e9},
+                                           {"fraction_of_peak", fraction}});
                     if (!json) {
                         char timing[40];
                         std::snprintf(timing, sizeof timing, "%.4g (%.4g)", ms(m.median_s), ms(m.best_s));
-                        std::printf("%-8s %6zu %3d %6d %19s %9s\n", PairForceKernel::name(variant), n, t, m.ticks, timing,
-                                    si(rate).c_str());
+                        std::printf("%-8s %6zu %3d %6d %19s %9s %6d %8.1f %6.0f%%\n", PairForceKernel::name(variant), n, t,
+                                    m.ticks, timing, si(rate).c_str(), flops, gflops, 100.0 * fraction);
                     }
                 }
             }
@@ -617,11 +574,13 @@ int bench_command(int argc, char** argv) {
     // --- Bundled meshes ------------------------------------------------------------------------
     std::vector<std::string> skipped;
     if (meshes) {
-        for (const std::string& file : bundled_meshes()) {
+        for (const std::string& file : bundled_mesh_scenes()) {
             const std::string name = std::filesystem::path(file).filename().string();
             std::size_t n = 0;
             try {
-                n = load_mesh(file).particle_count();
+                const Scene scene = load_scene(file);
+                if (scene.params.mesh.empty() || !scene.rigid_bodies.empty()) continue;  // not a mesh on its own
+                n = World(make_world_def(scene)).particle_count();
             } catch (const std::exception& e) {
                 skipped.push_back(name + ": " + e.what());
                 continue;
@@ -630,9 +589,8 @@ int bench_command(int argc, char** argv) {
                 skipped.push_back(name + ": " + std::to_string(n) + " particles, above " + std::to_string(mesh_max));
                 continue;
             }
-            auto load = [file] { return load_mesh(file); };
-            for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, load, t, budget)});
-            if (!quick && n <= 2500) add({name, n, "reference", measure(Kernel::Reference, load, 1, budget)});
+            for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, file, t, budget)});
+            if (!quick && n <= 2500) add({name, n, "reference", measure(Kernel::Reference, file, 1, budget)});
         }
     }
 
@@ -640,14 +598,14 @@ int bench_command(int argc, char** argv) {
     if (bodies) {
         for (const char* name : {"pile:100", "pile:100+cloud:1000"}) {
             const std::size_t n = std::string_view(name).find("cloud") != std::string_view::npos ? 1000 : 0;
-            for (int t : thread_counts) add({name, n, fast_name, measure_scene(name, t, budget)});
+            for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, name, t, budget, 50)});
         }
     }
 
     // --- Ratios, fast against baseline and reference, from the rows above ----------------------
     auto find = [&](std::size_t n, const std::string& kernel, int t) -> const Measurement* {
         for (const Row& r : rows) {
-            if (r.scene == "cloud" && r.n == n && r.kernel == kernel && r.m.threads == t && r.m.measured) return &r.m;
+            if (r.scene == cloud(n) && r.kernel == kernel && r.m.threads == t && r.m.measured) return &r.m;
         }
         return nullptr;
     };
@@ -693,7 +651,7 @@ int bench_command(int argc, char** argv) {
         std::size_t lo = 0, hi = kMaxParticles + 1;  // lo runs in real time, hi does not (none yet: above the max)
         Measurement at_lo, at_hi;
         for (const Row& r : rows) {
-            if (r.scene != "cloud" || r.kernel != fast_name || r.m.threads != threads || !r.m.measured || r.m.diverged) continue;
+            if (r.scene.rfind("cloud:", 0) != 0 || r.kernel != fast_name || r.m.threads != threads || !r.m.measured || r.m.diverged) continue;
             if (r.m.median_s <= dt && r.n > lo) {
                 lo = r.n;
                 at_lo = r.m;
@@ -707,10 +665,10 @@ int bench_command(int argc, char** argv) {
         const double probe_budget = quick ? 0.1 : std::max(0.3, 0.4 * budget);
         if (lo > 0 && hi > lo) {
             auto probe = [&](std::size_t n) {
-                Measurement m = measure(Kernel::Fast, [n] { return cloud_mesh(n); }, threads, probe_budget);
+                Measurement m = measure(Kernel::Fast, cloud(n), threads, probe_budget);
                 if (m.measured && m.median_s > dt && m.best_s <= dt) {
                     // Some ticks were fast enough: other work may have slowed the rest. Once more.
-                    const Measurement again = measure(Kernel::Fast, [n] { return cloud_mesh(n); }, threads, probe_budget);
+                    const Measurement again = measure(Kernel::Fast, cloud(n), threads, probe_budget);
                     if (again.measured && again.median_s < m.median_s) m = again;
                 }
                 const bool real = m.measured && !m.diverged && m.median_s <= dt;
@@ -733,43 +691,6 @@ int bench_command(int argc, char** argv) {
             }
         } else if (!json) {
             std::cout << "none of the measured sizes runs in real time\n";
-        }
-    }
-
-    // --- Frame side: stream positions and recompute normals for 10,000 vertices ---------------
-    nlohmann::ordered_json frame;
-    {
-        const Mesh mesh = torus_mesh(100, 100);
-        Vec3Array previous, current;
-        previous.resize(mesh.particle_count());
-        current.resize(mesh.particle_count());
-        for (std::size_t i = 0; i < mesh.particle_count(); ++i) {
-            previous.set(i, mesh.positions[i]);
-            current.set(i, mesh.positions[i] * 1.01f + Vec3{0.0f, 0.0f, 0.001f * float(i % 7)});
-        }
-        std::vector<Vec3> positions, normals;
-        std::vector<FrameVertex> out;
-        std::vector<double> times;
-        const int frames = quick ? 50 : 500;
-        for (int f = 0; f <= frames; ++f) {
-            const auto t0 = Clock::now();
-            stream_frame(mesh, previous, current, float(f % 10) / 10.0f, positions, normals, out);
-            if (f > 0) times.push_back(seconds_since(t0));  // the first frame allocates
-        }
-        std::sort(times.begin(), times.end());
-        const double median = times[times.size() / 2], best = times.front();
-        frame = {{"vertices", mesh.particle_count()},
-                 {"render_vertices", mesh.render_vertices.size()},
-                 {"triangles", mesh.triangle_count()},
-                 {"frames", frames},
-                 {"ms_per_frame_median", ms(median)},
-                 {"ms_per_frame_best", ms(best)},
-                 {"bytes_streamed_per_frame", out.size() * sizeof(FrameVertex)}};
-        if (!json) {
-            std::printf("\nframe side (CPU): interpolate + stream positions + smooth normals for a %zu-vertex torus "
-                        "(%zu render vertices, %zu triangles): %.3f ms median, %.3f ms best over %d frames\n",
-                        mesh.particle_count(), mesh.render_vertices.size(), mesh.triangle_count(), ms(median), ms(best),
-                        frames);
         }
     }
 
@@ -803,6 +724,13 @@ int bench_command(int argc, char** argv) {
             {"damping", defaults.damping},
             {"particle_mass", defaults.particle_mass},
             {"fast_variant", PairForceKernel::name(PairForceKernel::best_variant())},
+            {"flops_per_pair", {{"avx512", PairForceKernel::flops_per_pair(PairKernelVariant::Avx512)},
+                                {"avx2", PairForceKernel::flops_per_pair(PairKernelVariant::Avx2)},
+                                {"scalar", PairForceKernel::flops_per_pair(PairKernelVariant::Scalar)},
+                                {"counted", "as the tile executes: a fused multiply-add 2, a square root or reciprocal "
+                                            "square root 1; 9 subtractions, 3 dot products, sqrt for l0, 1/sqrt(l^2) "
+                                            "and its Newton step, the force scale, 6 multiply-adds onto the pair "
+                                            "(see pair_forces.cpp)"}}},
             {"hardware_threads", hardware_threads()},
             {"seconds_per_measurement", budget},
             {"quick", quick},
@@ -810,7 +738,7 @@ int bench_command(int argc, char** argv) {
             {"kernel_alone", kernel_rows},
             {"ratios", ratios},
             {"real_time", real_time},
-            {"frame", frame},
+            {"peak", peak_json},
             {"memory", memory},
             {"meshes_skipped", skipped},
             {"wall_seconds", total},

@@ -28,6 +28,7 @@
 #include "process_memory.h"
 #include "video.h"
 #include "physics/error.h"
+#include "physics/generated.h"
 #include "physics/mesh.h"
 #include "physics/world.h"
 #include "render/renderer.h"
@@ -422,28 +423,6 @@ int render_command(int argc, char** argv) {
 
 namespace {
 
-// A torus of rings x segments vertices: smooth, closed, and any size wanted exactly.
-Mesh torus_mesh(int rings, int segments) {
-    RawMesh raw;
-    const float major = 0.5f, minor = 0.2f;
-    for (int i = 0; i < rings; ++i) {
-        const float u = 2.0f * std::numbers::pi_v<float> * float(i) / float(rings);
-        for (int j = 0; j < segments; ++j) {
-            const float v = 2.0f * std::numbers::pi_v<float> * float(j) / float(segments);
-            raw.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
-                                     minor * std::sin(v)});
-        }
-    }
-    auto at = [&](int i, int j) { return static_cast<std::int32_t>((i % rings) * segments + (j % segments)); };
-    for (int i = 0; i < rings; ++i) {
-        for (int j = 0; j < segments; ++j) {
-            const std::int32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-            for (std::int32_t p : {a, b, c, a, c, d}) raw.triangle_corners.push_back(Corner{p, -1, -1});
-        }
-    }
-    return build_mesh(raw, "torus " + std::to_string(rings) + "x" + std::to_string(segments));
-}
-
 double median(std::vector<double> values) {
     if (values.empty()) return 0.0;
     std::sort(values.begin(), values.end());
@@ -475,7 +454,8 @@ int render_bench(int argc, char** argv) {
 
     // Deforming tori: every frame has new positions, so new normals and a new upload.
     for (const auto& [rings, segments] : {std::pair{20, 25}, std::pair{50, 50}, std::pair{100, 100}}) {
-        const Mesh mesh = torus_mesh(rings, segments);
+        // The shared torus (physics/generated.h): --scene torus:100x100 opens the same body.
+        const Mesh mesh = generated_mesh("torus:" + std::to_string(rings) + "x" + std::to_string(segments));
         const std::size_t n = mesh.particle_count();
         Vec3Array x;
         x.resize(n);

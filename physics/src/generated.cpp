@@ -1,6 +1,8 @@
 #include "physics/generated.h"
 
 #include <charconv>
+#include <cstdint>
+#include <utility>
 #include <cmath>
 #include <random>
 
@@ -24,7 +26,7 @@ Part split(std::string_view part) {
     const auto colon = part.find(':');
     if (colon == std::string_view::npos) return {};
     const std::string_view kind = part.substr(0, colon);
-    if (kind != "cloud" && kind != "ball" && kind != "pile") return {};
+    if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "torus" && kind != "lattice") return {};
     return {kind, part.substr(colon + 1)};
 }
 
@@ -49,6 +51,67 @@ int subdivisions_of(std::string_view name, const Part& part) {
     }
     return part.count[0] - '0';
 }
+
+// "RxS" of torus:RxS -> {R, S}, each 3 or more, R S at most kMaxCloud.
+std::pair<int, int> rings_segments_of(std::string_view name, const Part& part) {
+    const auto x = part.count.find('x');
+    const auto bad = [&] {
+        return InputError(std::string(name) + ": torus takes rings x segments, each 3 or more and " +
+                          std::to_string(kMaxCloud) + " particles at most (write torus:RxS, e.g. torus:100x100)");
+    };
+    if (x == std::string_view::npos) throw bad();
+    const std::string_view a = part.count.substr(0, x), b = part.count.substr(x + 1);
+    std::size_t rings = 0, segments = 0;
+    const auto parse = [](std::string_view text, std::size_t& value) {
+        const auto [at, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        return !text.empty() && error == std::errc() && at == text.data() + text.size();
+    };
+    if (!parse(a, rings) || !parse(b, segments) || rings < 3 || segments < 3 || rings > kMaxCloud ||
+        segments > kMaxCloud / rings) {
+        throw bad();
+    }
+    return {int(rings), int(segments)};
+}
+
+// A closed torus about the z axis, 1.4 m across (centre line radius 0.5 m, tube radius
+// 0.2 m): `rings` vertices around the centre line times `segments` around the tube, each quad
+// two triangles, smooth.
+Mesh torus(int rings, int segments, std::string_view name) {
+    RawMesh raw;
+    const float major = 0.5f, minor = 0.2f, turn = 6.28318531f;
+    for (int i = 0; i < rings; ++i) {
+        const float u = turn * float(i) / float(rings);
+        for (int j = 0; j < segments; ++j) {
+            const float v = turn * float(j) / float(segments);
+            raw.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
+                                     minor * std::sin(v)});
+        }
+    }
+    const auto at = [&](int i, int j) { return std::int32_t((i % rings) * segments + (j % segments)); };
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const std::int32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+            for (std::int32_t corner : {a, b, c, a, c, d}) raw.triangle_corners.push_back(Corner{corner, -1, -1});
+        }
+    }
+    return build_mesh(raw, std::string(name));
+}
+
+// A x A x A particles on a cubic grid filling a 1 m cube centred on the origin, no faces.
+Mesh lattice(std::size_t a) {
+    RawMesh raw;
+    const float pitch = 1.0f / float(a - 1);
+    for (std::size_t i = 0; i < a; ++i) {
+        for (std::size_t j = 0; j < a; ++j) {
+            for (std::size_t k = 0; k < a; ++k) {
+                raw.positions.push_back({float(i) * pitch - 0.5f, float(j) * pitch - 0.5f, float(k) * pitch - 0.5f});
+            }
+        }
+    }
+    return build_mesh(raw, "lattice:" + std::to_string(a));
+}
+
+constexpr std::size_t kMaxLattice = 73;  // 73^3 = 389,017 particles, within kMaxCloud
 
 Mesh cloud(std::size_t n) {
     std::mt19937 rng(20240601u + static_cast<unsigned>(n));
@@ -137,7 +200,17 @@ Mesh generated_mesh(std::string_view name) {
         mesh.source = std::string(name);
         return mesh;
     }
-    throw InputError(std::string(name) + ": not a mesh (a mesh is cloud:N or ball:S; pile:N is a scene: use --scene)");
+    if (part.kind == "torus") {
+        const auto [rings, segments] = rings_segments_of(name, part);
+        return torus(rings, segments, name);
+    }
+    if (part.kind == "lattice") {
+        const std::size_t a = count_of(name, part, kMaxLattice);
+        if (a < 2) throw InputError(std::string(name) + ": lattice takes 2 to " + std::to_string(kMaxLattice) + ", not 1");
+        return lattice(a);
+    }
+    throw InputError(std::string(name) +
+                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N is a scene: use --scene)");
 }
 
 Scene generated_scene(std::string_view name, const Scene& base) {
@@ -148,17 +221,20 @@ Scene generated_scene(std::string_view name, const Scene& base) {
         const std::size_t plus = name.find('+', start);
         const std::string_view text = name.substr(start, plus == std::string_view::npos ? std::string_view::npos : plus - start);
         const Part part = split(text);
-        if (part.kind == "cloud" || part.kind == "ball") {
+        if (part.kind == "cloud" || part.kind == "ball" || part.kind == "torus" || part.kind == "lattice") {
             if (soft) throw InputError(std::string(name) + ": one cloud or ball at most (it is the scene's soft body)");
             soft = true;
-            if (part.kind == "cloud") count_of(name, part, kMaxCloud);
-            else subdivisions_of(name, part);
+            generated_mesh(text);  // checks the count; the World makes the mesh again from its name
             scene.params.mesh = std::string(text);
             scene.params.auto_substeps = true;
+            // Every particle the name asks for is simulated (no particle budget): cloud:5000 in
+            // the app is the body `softbody bench` times at N = 5,000.
+            scene.params.max_particles = 0;
         } else if (part.kind == "pile") {
             pile(count_of(name, part, kMaxPile), scene);
         } else {
-            throw InputError(std::string(name) + ": '" + std::string(text) + "' is not cloud:N, ball:S or pile:N");
+            throw InputError(std::string(name) + ": '" + std::string(text) +
+                             "' is not cloud:N, ball:S, torus:RxS, lattice:A or pile:N");
         }
         if (plus == std::string_view::npos) break;
         start = plus + 1;

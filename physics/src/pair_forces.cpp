@@ -1,8 +1,12 @@
 #include "physics/pair_forces.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <functional>
+#include <thread>
+#include <vector>
 
 #include "pair_tiles.h"
 
@@ -50,7 +54,8 @@ double elastic_energy_reference(const PairInput& in) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Fast kernel: the triangle of pairs (i < j) is cut into square tiles of kBlock x kBlock.
+// Fast kernel: the triangle of pairs (i < j) is cut into square tiles of B x B, B the block
+// size for this N (256, or 512 from PairForceKernel::kLargeBody particles on).
 // Each tile writes its partial forces into a buffer of its own; each block's total is then the
 // sum of its tiles' partials in a fixed order. Threads only choose which tile to do next, so
 // the sums, and the bits of the result, are the same for any number of threads.
@@ -113,12 +118,34 @@ double stretch_tile_portable(const PackedParticles& p, std::size_t i0, std::size
     return sum;
 }
 
+float probe_portable(std::size_t rounds, float seed) {
+    // Half the chains of the SIMD probes: a multiply then an add (6 cycles or so) on 12 chains
+    // already keeps two multipliers and two adders busy, and 12 fit in the 16 registers.
+    static_assert(kProbeChains == 24);
+    const float b = 0.999f, c = 0.001f;
+    float a0 = seed, a1 = seed + 0.001f, a2 = seed + 0.002f, a3 = seed + 0.003f, a4 = seed + 0.004f,
+          a5 = seed + 0.005f, a6 = seed + 0.006f, a7 = seed + 0.007f, a8 = seed + 0.008f, a9 = seed + 0.009f,
+          a10 = seed + 0.010f, a11 = seed + 0.011f;
+    const auto step = [b, c](float& a) {
+        a = a * b + c;
+#if defined(__x86_64__) || defined(__i386__)
+        asm("" : "+x"(a));  // one float per register: keeps the compiler from packing chains into vectors
+#endif
+    };
+    for (std::size_t r = 0; r < rounds; ++r) {
+        step(a0), step(a1), step(a2), step(a3), step(a4), step(a5);
+        step(a6), step(a7), step(a8), step(a9), step(a10), step(a11);
+    }
+    return a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7 + a8 + a9 + a10 + a11;
+}
+
 }  // namespace detail
 
 namespace {
 
-constexpr std::size_t B = PairForceKernel::kBlock;
-static_assert(B == detail::kTile && B % detail::kPad == 0);
+constexpr std::size_t T = detail::kTile;  // floats from one axis's partial forces to the next
+static_assert(PairForceKernel::kBlock % detail::kPad == 0 && PairForceKernel::kLargeBlock % detail::kPad == 0);
+static_assert(PairForceKernel::kBlock <= T && PairForceKernel::kLargeBlock <= T);
 
 detail::TileFunction tile_function(PairKernelVariant variant) {
     switch (variant) {
@@ -145,6 +172,7 @@ detail::StretchTileFunction stretch_tile_function(PairKernelVariant variant) {
 }
 
 std::size_t tile_count(std::size_t n) {
+    const std::size_t B = PairForceKernel::block_size(n);
     const std::size_t blocks = (n + B - 1) / B;
     return blocks * (blocks + 1) / 2;
 }
@@ -201,14 +229,92 @@ const char* PairForceKernel::name(PairKernelVariant variant) {
 PairForceKernel::PairForceKernel(ThreadPool& pool, PairKernelVariant variant)
     : pool_(pool), variant_(variant == PairKernelVariant::Auto || !supported(variant) ? best_variant() : variant) {}
 
+// Flops per pair, counted in the tiles as written (pair_tiles.h's formulas):
+//   e = x_i - x_j, w = v_i - v_j, q = r_i - r_j      9 subtractions                      9
+//   l^2 = e.e, |q|^2 = q.q, (w.e)                     3 x (a multiply + 2 multiply-adds)  15
+//   l^2 kept above the smallest normal float          1 max                               1
+//   (k/2) l0 = sqrt(|q|^2)                            1 square root                       1
+//   g = 2/l: approximate 1/sqrt, one Newton step      1 + multiply, multiply-add, multiply 5
+//   s = k - (k l0/2) g + (w.e) g^2                    multiply + 2 multiply-adds          5
+//   force on i (-= s e) and on j (+= s e)             6 multiply-adds                     12
+//                                                                                  total 48
+// The portable tile has no fused multiply-add (the build forbids fusing), and takes 2/l
+// as a square root and a division: the same 48, less the max and the Newton step's 4, is 44.
+int PairForceKernel::flops_per_pair(PairKernelVariant variant) {
+    return (variant == PairKernelVariant::Auto ? best_variant() : variant) == PairKernelVariant::Scalar ? 44 : 48;
+}
+
+double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, double seconds) {
+    if (variant == PairKernelVariant::Auto || !supported(variant)) variant = best_variant();
+    float (*probe)(std::size_t, float) = detail::probe_portable;
+    double lanes = 0.5;  // the portable probe runs half the chains, one float wide
+#if defined(SOFTBODY_HAVE_AVX512_TILE)
+    if (variant == PairKernelVariant::Avx512) probe = detail::probe_avx512, lanes = 16.0;
+#endif
+#if defined(SOFTBODY_HAVE_AVX2_TILE)
+    if (variant == PairKernelVariant::Avx2) probe = detail::probe_avx2, lanes = 8.0;
+#endif
+    // Rounds of short bursts, one per thread, each round timed from its start until every
+    // thread has finished its burst, as a call of the kernel is: a thread that the operating
+    // system takes away (or that shares its core with another) makes the round longer.
+    // Bursts of a few microseconds: short enough that most rounds run undisturbed, long enough
+    // that the clock's resolution does not matter. The median round gives the rate.
+    constexpr std::size_t kRounds = 2048;
+    const double flops_per_burst = double(kRounds) * double(detail::kProbeChains) * lanes * 2.0;
+    threads = std::max(1, threads);
+    std::atomic<long> round{0};
+    std::atomic<int> finished{0};
+    std::atomic<bool> stop{false};
+    std::atomic<float> sink{0.0f};
+    const auto wait_for = [](const auto& ready) {
+        for (unsigned i = 1; !ready(); ++i) {
+            if (i % 64 == 0) std::this_thread::yield();
+        }
+    };
+    std::vector<std::thread> others;
+    for (int t = 1; t < threads; ++t) {
+        others.emplace_back([&, t] {
+            long seen = 0;
+            float seed = 0.5f + 0.01f * float(t);
+            for (;;) {
+                wait_for([&] { return stop.load() || round.load() != seen; });
+                if (stop.load()) break;
+                seen = round.load();
+                seed = 0.5f + 1e-3f * probe(kRounds, seed);
+                finished.fetch_add(1);
+            }
+            sink.store(seed);
+        });
+    }
+    using Clock = std::chrono::steady_clock;
+    std::vector<double> times;
+    float seed = 0.5f;
+    const auto start = Clock::now();
+    do {
+        finished.store(0);
+        const auto t0 = Clock::now();
+        round.fetch_add(1);
+        seed = 0.5f + 1e-3f * probe(kRounds, seed);
+        wait_for([&] { return finished.load() == threads - 1; });
+        times.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    } while (std::chrono::duration<double>(Clock::now() - start).count() < seconds || times.size() < 5);
+    stop.store(true);
+    for (std::thread& thread : others) thread.join();
+    sink.store(seed);
+    std::nth_element(times.begin(), times.begin() + std::ptrdiff_t(times.size() / 2), times.end());
+    return double(threads) * flops_per_burst / times[times.size() / 2];
+}
+
 std::size_t PairForceKernel::memory_bytes(std::size_t n) {
     const std::size_t tiles = tile_count(n);
-    return sizeof(float) * (9 * padded(n) + tiles * 6 * B) + sizeof(std::size_t) * 3 * tiles + sizeof(double) * tiles;
+    return sizeof(float) * (9 * padded(n) + tiles * 6 * T) + sizeof(std::size_t) * 3 * tiles + sizeof(double) * tiles;
 }
 
 void PairForceKernel::prepare(std::size_t n) {
     if (n == n_ && !tile_i_.empty()) return;
     n_ = n;
+    block_ = block_size(n);
+    const std::size_t B = block_;
     blocks_ = (n + B - 1) / B;
     tile_i_.clear();
     tile_j_.clear();
@@ -228,7 +334,7 @@ void PairForceKernel::prepare(std::size_t n) {
     order_.resize(tile_i_.size());
     for (std::size_t t = 0; t < order_.size(); ++t) order_[t] = t;
     std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return pairs_in(a) > pairs_in(b); });
-    partial_.assign(tile_i_.size() * 6 * B, 0.0f);
+    partial_.assign(tile_i_.size() * 6 * T, 0.0f);
     partial_energy_.assign(tile_i_.size(), 0.0);
     stride_ = padded(n);
     packed_.assign(9 * stride_, 0.0f);
@@ -254,14 +360,15 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 0.25f * in.c, 0.5f * in.k);  // see pair_tiles.h
     const detail::TileFunction tile = tile_function(variant_);
+    const std::size_t B = block_;
     pool_.run(order_.size(), [&](std::size_t k) {
         const std::size_t t = order_[k];
-        float* out = partial_.data() + t * 6 * B;
-        std::fill(out, out + 6 * B, 0.0f);
+        float* out = partial_.data() + t * 6 * T;
+        for (std::size_t axis = 0; axis < 6; ++axis) std::fill(out + axis * T, out + axis * T + B, 0.0f);
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);
         const std::size_t j0 = J * B, j1 = std::min(j0 + B, in.n);
-        tile(p, i0, i1, j0, j1, I == J, out, I == J ? out : out + 3 * B);
+        tile(p, i0, i1, j0, j1, I == J, out, I == J ? out : out + 3 * T);
     });
     // Block b's total: its tiles (min(b,J), max(b,J)) for J = 0, 1, ... in that order.
     auto reduce = [&](std::size_t b) {
@@ -270,11 +377,11 @@ void PairForceKernel::compute(const PairInput& in, Vec3Array& f) {
             const std::size_t I = std::min(b, J), K = std::max(b, J);
             // index of tile (I, K) in the order prepare() lists them: row I holds blocks_ - I tiles
             const std::size_t t = I * (2 * blocks_ - I + 1) / 2 + (K - I);
-            const float* part = partial_.data() + t * 6 * B + (b == I ? 0 : 3 * B);
+            const float* part = partial_.data() + t * 6 * T + (b == I ? 0 : 3 * T);
             for (std::size_t q = p0; q < p1; ++q) {
                 f.x[q] += part[q - p0];
-                f.y[q] += part[B + q - p0];
-                f.z[q] += part[2 * B + q - p0];
+                f.y[q] += part[T + q - p0];
+                f.z[q] += part[2 * T + q - p0];
             }
         }
     };
@@ -287,6 +394,7 @@ double PairForceKernel::elastic_energy(const PairInput& in) {
     prepare(in.n);
     const detail::PackedParticles p = pack(in, 1.0f, 1.0f);
     const detail::StretchTileFunction tile = stretch_tile_function(variant_);
+    const std::size_t B = block_;
     pool_.run(tile_i_.size(), [&](std::size_t t) {
         const std::size_t I = tile_i_[t], J = tile_j_[t];
         const std::size_t i0 = I * B, i1 = std::min(i0 + B, in.n);

@@ -145,3 +145,20 @@ double stretch_tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i
 }
 
 }  // namespace softbody::detail
+
+namespace softbody::detail {
+
+float probe_avx2(std::size_t rounds, float seed) {
+    __m256 a[kProbeChains];
+    for (std::size_t c = 0; c < kProbeChains; ++c) a[c] = _mm256_set1_ps(seed + 0.001f * float(c));
+    const __m256 b = _mm256_set1_ps(0.999f), c = _mm256_set1_ps(0.001f);  // a stays bounded: a -> 1
+    for (std::size_t r = 0; r < rounds; ++r) {
+#pragma GCC unroll 24
+        for (std::size_t k = 0; k < kProbeChains; ++k) a[k] = _mm256_fmadd_ps(a[k], b, c);
+    }
+    __m256 sum = a[0];
+    for (std::size_t k = 1; k < kProbeChains; ++k) sum = _mm256_add_ps(sum, a[k]);
+    return sum_lanes(sum);
+}
+
+}  // namespace softbody::detail

@@ -147,3 +147,22 @@ double stretch_tile_avx512(const PackedParticles& p, std::size_t i0, std::size_t
 }
 
 }  // namespace softbody::detail
+
+namespace softbody::detail {
+
+float probe_avx512(std::size_t rounds, float seed) {
+    __m512 a[kProbeChains];
+    for (std::size_t c = 0; c < kProbeChains; ++c) a[c] = _mm512_set1_ps(seed + 0.001f * float(c));
+    const __m512 b = _mm512_set1_ps(0.999f), c = _mm512_set1_ps(0.001f);  // a stays bounded: a -> 1
+    for (std::size_t r = 0; r < rounds; ++r) {
+#pragma GCC unroll 24
+        for (std::size_t k = 0; k < kProbeChains; ++k) a[k] = _mm512_fmadd_ps(a[k], b, c);
+    }
+    __m512 sum = a[0];
+    for (std::size_t k = 1; k < kProbeChains; ++k) sum = _mm512_add_ps(sum, a[k]);
+    alignas(64) float lanes[16];
+    _mm512_store_ps(lanes, sum);
+    return lanes[0] + lanes[15];
+}
+
+}  // namespace softbody::detail

@@ -28,11 +28,11 @@ struct PackedParticles {
 };
 
 inline constexpr std::size_t kPad = 16;       // widest SIMD lane count used
-inline constexpr std::size_t kTile = 256;     // particles per block; a multiple of kPad
+inline constexpr std::size_t kTile = 512;     // the largest block: floats from one axis's partial forces to the next
 inline constexpr float kMinLengthSq = 1.17549435e-38f;  // smallest normal float: below it, coincident
 
 // One tile: pairs (i, j) with i in [i0, i1), j in [j0, j1), and j > i when `diagonal` (then
-// i0 == j0). i0 and j0 are multiples of kTile. Adds the force on i to
+// i0 == j0). i0 and j0 are multiples of kPad; i1 - i0 and j1 - j0 at most kTile. Adds the force on i to
 // out_i[axis * kTile + (i - i0)] and the force on j to out_j[axis * kTile + (j - j0)]
 // (axis 0, 1, 2 = x, y, z); on a diagonal tile out_i == out_j.
 // Coincident particles (l^2 below kMinLengthSq) exert no force on each other.
@@ -48,13 +48,24 @@ void tile_portable(const PackedParticles& p, std::size_t i0, std::size_t i1, std
                    bool diagonal, float* out_i, float* out_j);
 double stretch_tile_portable(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                              bool diagonal);
+// The peak probe: `rounds` rounds of kProbeChains independent multiply-add chains
+// (a <- a b + c) at the tile's vector width, with the tile's own instructions (a fused
+// multiply-add on the SIMD tiles, a multiply and an add in the portable one). Chains that do
+// not wait on one another keep every multiply-add unit busy, so rounds x kProbeChains x lanes
+// x 2 flops over the time taken is the most this core can do at that width. Returns a value
+// that depends on every chain, so none is optimised away.
+inline constexpr std::size_t kProbeChains = 24;
+float probe_portable(std::size_t rounds, float seed);
+
 #if defined(SOFTBODY_HAVE_AVX2_TILE)
+float probe_avx2(std::size_t rounds, float seed);
 void tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                bool diagonal, float* out_i, float* out_j);
 double stretch_tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                          bool diagonal);
 #endif
 #if defined(SOFTBODY_HAVE_AVX512_TILE)
+float probe_avx512(std::size_t rounds, float seed);
 void tile_avx512(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                  bool diagonal, float* out_i, float* out_j);
 double stretch_tile_avx512(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,

@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 
+#include "physics/generated.h"
 #include "physics/pair_forces.h"
 #include "rest_length_experiment.h"
 
@@ -28,18 +30,21 @@ struct Cloud {
     }
 };
 
-// N particles in a 1 m cube, displaced a little from their rest positions, moving.
+// The shared cloud:N (physics/generated.h: N particles in a ball 1 m across, the body
+// `softbody bench` times and `--scene cloud:N` opens) as rest positions, each particle moved a
+// little from rest and moving, as the bench's kernel rows have it.
 Cloud make_cloud(std::size_t n) {
-    std::mt19937 rng(12345);
-    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    const Mesh mesh = generated_mesh("cloud:" + std::to_string(n));
+    std::mt19937 rng(7u);
+    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
     Cloud c;
     c.x.resize(n);
     c.v.resize(n);
     c.r.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        c.r.set(i, {u(rng), u(rng), u(rng)});
-        c.x.set(i, c.r[i] + 0.05f * Vec3{u(rng), u(rng), u(rng)});
-        c.v.set(i, {u(rng), u(rng), u(rng)});
+        c.r.set(i, mesh.positions[i]);
+        c.x.set(i, mesh.positions[i] + Vec3{u(rng), u(rng), u(rng)});
+        c.v.set(i, Vec3{u(rng), u(rng), u(rng)} * 20.0f);
     }
     return c;
 }

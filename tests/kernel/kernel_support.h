@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/generated.h"
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
 #include "../physics/test_support.h"  // random_cloud and the other shared helpers
@@ -46,26 +47,10 @@ inline PairState deformed(const std::vector<Vec3>& rest, std::uint32_t seed, flo
     return s;
 }
 
-// A closed torus of rings x segments vertices, 2 triangles per quad, welded and indexed as
-// load_mesh would give it.
+// A closed torus of rings x segments vertices, welded and indexed as load_mesh gives it: the
+// shared generator's (physics/generated.h), the body `softbody bench` and the app know too.
 inline Mesh torus(int rings, int segments) {
-    RawMesh raw;
-    for (int a = 0; a < rings; ++a) {
-        for (int b = 0; b < segments; ++b) {
-            const float u = 6.2831853f * float(a) / float(rings), w = 6.2831853f * float(b) / float(segments);
-            raw.positions.push_back({(1.0f + 0.4f * std::cos(w)) * std::cos(u), (1.0f + 0.4f * std::cos(w)) * std::sin(u),
-                                     0.4f * std::sin(w)});
-        }
-    }
-    auto at = [&](int a, int b) { return (a % rings) * segments + (b % segments); };
-    for (int a = 0; a < rings; ++a) {
-        for (int b = 0; b < segments; ++b) {
-            for (int corner : {at(a, b), at(a + 1, b), at(a + 1, b + 1), at(a, b), at(a + 1, b + 1), at(a, b + 1)}) {
-                raw.triangle_corners.push_back(Corner{corner, -1, -1});
-            }
-        }
-    }
-    return build_mesh(raw, "torus");
+    return generated_mesh("torus:" + std::to_string(rings) + "x" + std::to_string(segments));
 }
 
 // Tolerance of the fast kernel against the reference, relative to the scale of particle i's

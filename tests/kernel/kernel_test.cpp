@@ -36,9 +36,12 @@ void expect_matches_reference(const PairState& s, const std::string& what) {
 }
 
 // Sizes around every edge of the tiling: 1 to 3 particles, either side of the 8- and 16-wide
-// SIMD vectors and of the 256-particle blocks, and a few blocks with a ragged last one.
+// SIMD vectors and of the 256-particle blocks, a few blocks with a ragged last one, and either
+// side of kLargeBody, where the blocks become 512 particles (2,600: five whole and a ragged one).
 TEST(PairKernel, MatchesReferenceOnRandomClouds) {
-    for (std::size_t n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 100, 255, 256, 257, 300, 511, 512, 513, 1000, 1025, 1337, 2600}) {
+    static_assert(PairForceKernel::kLargeBody == 2048);
+    for (std::size_t n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 100, 255, 256, 257, 300, 511, 512, 513, 1000, 1025, 1337,
+                          2047, 2048, 2600}) {
         expect_matches_reference(deformed(random_cloud(n, 7u + n), 100u + n), "random cloud");
     }
 }
@@ -117,7 +120,7 @@ TEST(PairKernel, CoincidentParticlesGiveNoForceAndNoNaN) {
 }
 
 TEST(PairKernel, BitIdenticalAcrossRunsAndThreadCounts) {
-    for (std::size_t n : {3, 257, 1100, 2000}) {
+    for (std::size_t n : {3, 257, 1100, 2000, 2600}) {  // 2,600: blocks of 512
         const PairState s = deformed(random_cloud(n, 31u), 32u);
         for (PairKernelVariant variant : variants_here()) {
             ThreadPool one(1);

@@ -6,6 +6,11 @@
 //               with auto_substeps on)
 //   ball:S      an icosphere 1 m across: the icosahedron with each triangle split in four S
 //               times (S = 0 to 5; 10 * 4^S + 2 particles), a mesh or a scene as cloud:N is
+//               (so are torus and lattice); a scene of one of these simulates every particle
+//               (max_particles all), so the body the bench times is the body the app opens
+//   torus:RxS   a closed torus 1.4 m across (centre line radius 0.5 m, tube radius 0.2 m), R
+//               vertices around the centre line times S around the tube (R, S >= 3), smooth
+//   lattice:A   A^3 particles on a cubic grid filling a 1 m cube (A = 2 to 73), no faces
 //   pile:N      a scene of N rigid bodies (boxes, spheres, cylinders and icosahedra, ball:0,
 //               by turns, in layers) dropped into a fixed bin that grows with N
 //   A+B         the scenes A and B together: pile:100+cloud:1000 is the bench's mixed scene
@@ -21,10 +26,11 @@
 
 namespace softbody {
 
-// True for "cloud:N", "ball:S", "pile:N" and sums of them: a name, not a file.
+// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N" and sums of them: a name,
+// not a file.
 bool is_generated(std::string_view name);
 
-// The mesh a name makes ("cloud:N", "ball:S"); InputError for a count out of range or a scene-only name.
+// The mesh a name makes ("cloud:N", "ball:S", "torus:RxS", "lattice:A"); InputError for a count out of range or a scene-only name.
 Mesh generated_mesh(std::string_view name);
 
 // The scene a name makes, over `base` (its world keys); InputError as above.

@@ -44,10 +44,17 @@ enum class PairKernelVariant { Auto, Scalar, Avx2, Avx512 };
 
 class PairForceKernel {
 public:
-    // Particles per block: a tile's data (2 x 256 particles x 9 floats, 18 KB, plus 6 KB of
-    // partial forces) fits in L1. On one core 256 measured 10% faster than 128 and 3 to 6%
-    // slower than 512 (fewer per-row sums); 256 keeps more tiles to share out between threads.
+    // Particles per block, by body size only (never by thread count or machine, so the sums
+    // and their bits are the same wherever the body runs). A tile's data (2 x 256 particles x
+    // 9 floats, 18 KB, plus 6 KB of partial forces) fits in L1; small bodies keep blocks of
+    // 256 so that two threads have tiles to share (N = 500: three tiles of near-equal work).
+    // From kLargeBody particles on, blocks of 512: fewer once-a-row sums and half-empty
+    // diagonal tiles, measured 4% faster at N = 2,500 on one core, with ten tiles or more
+    // still to share out.
     static constexpr std::size_t kBlock = 256;
+    static constexpr std::size_t kLargeBlock = 512;
+    static constexpr std::size_t kLargeBody = 2048;
+    static constexpr std::size_t block_size(std::size_t n) { return n >= kLargeBody ? kLargeBlock : kBlock; }
 
     explicit PairForceKernel(ThreadPool& pool, PairKernelVariant variant = PairKernelVariant::Auto);
 
@@ -65,8 +72,21 @@ public:
     static PairKernelVariant best_variant();
     static const char* name(PairKernelVariant variant);
 
+    // Floating-point operations the variant's tile spends on one pair, counted as it executes
+    // them (a fused multiply-add is 2, a square root or an approximate reciprocal square
+    // root 1; the once-a-row lane sums and the masks of ragged vectors are left out). See
+    // pair_forces.cpp for the count, term by term.
+    static int flops_per_pair(PairKernelVariant variant);
+
+    // The peak of this CPU at the variant's vector width: flop/s of `threads` threads, each
+    // running independent multiply-add chains with the tile's instructions (pair_tiles.h) in
+    // short bursts for about `seconds`; each thread's rate is its median burst's, as the bench
+    // takes the median call. A pair rate times flops_per_pair over this is the fraction of the
+    // peak the tile reaches.
+    static double peak_flops(PairKernelVariant variant, int threads, double seconds);
+
     // Bytes the kernel keeps for n particles (packed copy of the state, per-tile partials):
-    // O(n^2 / kBlock) for the partials, no per-pair storage.
+    // O(n^2 / block) for the partials, no per-pair storage.
     static std::size_t memory_bytes(std::size_t n);
 
 private:
@@ -75,12 +95,12 @@ private:
 
     ThreadPool& pool_;
     PairKernelVariant variant_;
-    std::size_t n_ = 0, blocks_ = 0;
+    std::size_t n_ = 0, block_ = kBlock, blocks_ = 0;
     std::vector<std::size_t> tile_i_, tile_j_;  // block indices of each tile, tile_i_ <= tile_j_
     std::vector<std::size_t> order_;            // tiles in the order threads pick them up
     FloatArray packed_;                         // 9 arrays of padded particles (see pair_tiles.h)
     std::size_t stride_ = 0;                    // floats per packed array
-    FloatArray partial_;                        // per tile: 2 x kBlock x 3 partial forces
+    FloatArray partial_;                        // per tile: 2 x 3 partial forces, kTile floats apart
     std::vector<double> partial_energy_;
 };
 
