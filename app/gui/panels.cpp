@@ -83,9 +83,8 @@ void tooltip(const ParamInfo& info) {
 
 std::string memory_text(std::size_t n) {
     // State: x, x_prev, v, rest, forces, four stage accelerations and scratch: about 30 floats a
-    // particle; the fast kernel's tile buffers: 6 x 256 floats per tile of 256 x 256 pairs.
-    const double blocks = std::ceil(double(n) / double(PairForceKernel::kBlock));
-    const double bytes = double(n) * 30.0 * 4.0 + blocks * (blocks + 1.0) / 2.0 * 6.0 * 256.0 * 4.0;
+    // particle; and what the fast kernel keeps (its packed state and per-tile partial forces).
+    const double bytes = double(n) * 30.0 * 4.0 + double(PairForceKernel::memory_bytes(n));
     char text[64];
     std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
     return text;

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "physics/pair_forces.h"
-#include "physics/scene_io.h"
 #include "test_support.h"
 
 namespace softbody::test {
@@ -73,45 +72,6 @@ TEST(Determinism, ChangingThreadsMidRunKeepsTheHash) {
     b.run(75);
     EXPECT_EQ(a.state_hash(), b.state_hash());
     EXPECT_EQ(a.state_hash(), hash_after(1, 150));
-}
-
-}  // namespace
-}  // namespace softbody::test
-
-namespace softbody::test {
-namespace {
-
-// Time travel (World::snapshot, World::restore): back to a moment, and on from there, the world
-// does exactly what it did the first time: the same bits, under every integrator, with soft and
-// rigid bodies touching (the last step's contacts start the next one's impulses) and a spring
-// between bodies.
-TEST(TimeTravel, RestoredWorldGoesOnBitForBit) {
-    const std::string scene =
-        "{\"stiffness\": 0.5, \"damping\": 0.01, \"particle_mass\": 0.05, \"rigid_bodies\": ["
-        "{\"name\": \"table\", \"shape\": \"box\", \"size\": [1, 1, 0.6], \"fixed\": true, \"position\": [0.2, 0, 0.3]},"
-        "{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.2, \"position\": [-0.4, 0.1, 1.5], \"velocity\": [0.5, 0, 0]}],"
-        " \"springs\": [{\"a\": {\"body\": \"ball\", \"point\": [0, 0, 0.2]}, \"b\": {\"point\": [-0.4, 0.1, 2.5]},"
-        " \"stiffness\": 20, \"damping\": 0.5}]}";
-    for (const char* integrator : {"verlet", "symplectic_euler", "explicit_euler", "rk4"}) {
-        WorldDef def = make_world_def(parse_scene(scene, "travel.json"));
-        def.params.integrator = *integrator_from_string(integrator);
-        std::vector<Vec3> cloud = random_cloud(200, 11, 0.3f);
-        for (Vec3& p : cloud) p += Vec3{0.0f, 0.0f, 1.2f};
-        def.params.init_height = 0.0f;
-        def.soft_bodies.push_back(SoftBodyDef{"body", def.params, points(cloud)});
-        World world(std::move(def));
-        world.run(40);  // landing: contacts busy
-        const WorldSnapshot then = world.snapshot();
-        world.run(60);
-        const std::uint64_t first = world.state_hash();
-        const std::uint64_t ticks = world.ticks();
-        world.restore(then);
-        EXPECT_EQ(world.ticks(), 40u);
-        world.run(60);
-        EXPECT_EQ(world.ticks(), ticks);
-        EXPECT_EQ(world.state_hash(), first) << integrator;
-        EXPECT_GT(then.bytes(), 200u * 13u * sizeof(float));
-    }
 }
 
 }  // namespace
