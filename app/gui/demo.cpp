@@ -302,8 +302,7 @@ void Demo::go_to_tick(std::uint64_t tick) {
     history_.go_to(*world_, tick);
     for (ComparedWorld& c : compared_) c.history.go_to(*c.world, tick);
     // The energy plot and the last collision come back with the world; the plot is cut at now.
-    while (energy_.size() > 1 && energy_.back().time > world_->time() + 1e-9) energy_.pop_back();
-    if (!energy_.empty() && energy_.back().time > world_->time() + 1e-9) energy_.clear();
+    while (!energy_.empty() && energy_.back().time >= world_->time()) energy_.pop_back();
     sample_energy();
     last_collision_.reset();
     clock_.reset();

@@ -20,30 +20,16 @@
 #include "physics/collide.h"
 #include "physics/convex_hull.h"
 #include "physics/rigid_body.h"
+#include "../physics/test_shapes.h"
 
 namespace {
 
 using namespace softbody;
+using softbody::test::box;
+using softbody::test::cylinder;
+using softbody::test::turn;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMargin = 0.02;  // m: about a step's relative motion at 1 m/s and 50 Hz
-
-CollisionShape box(const Vec3d& size) {
-    RigidBodyDef def;
-    def.name = "box";
-    def.shape = ShapeKind::Box;
-    def.size = size;
-    return collision_shape(make_rigid_body(def));
-}
-
-CollisionShape cylinder(double radius, double height) {
-    RigidBodyDef def;
-    def.name = "cylinder";
-    def.shape = ShapeKind::Cylinder;
-    def.radius = radius;
-    def.height = height;
-    return collision_shape(make_rigid_body(def));
-}
 
 // The hull of 2,000 points on a sphere, cut to the 64-vertex budget: the largest hull a mesh
 // body collides with.
@@ -57,8 +43,6 @@ CollisionShape hull64(double radius) {
     }
     return hull_shape(std::make_shared<const ConvexHull>(convex_hull(points)));
 }
-
-Quat turn(const Vec3d& axis, double degrees) { return Quat::from_axis_angle(normalize(axis), degrees * kPi / 180.0); }
 
 // 100 boxes of 0.4 m in 5 x 5 columns of 4, each a little turned and tilted, each sunk 1 mm
 // into the one below, the bottom layer 1 mm into a 20 m slab (body 0, fixed).

@@ -25,6 +25,7 @@
 #include "physics/collide.h"
 #include "physics/convex_hull.h"
 #include "physics/rigid_body.h"
+#include "test_shapes.h"
 #include "test_support.h"
 
 namespace softbody::test {
@@ -35,33 +36,6 @@ const double kSqrt2 = std::sqrt(2.0), kSqrt3 = std::sqrt(3.0);
 const Vec3d kUp{0.0, 0.0, 1.0};
 
 // --- Shapes and poses ------------------------------------------------------------------------------
-
-CollisionShape box(const Vec3d& size) {
-    RigidBodyDef def;
-    def.name = "box";
-    def.shape = ShapeKind::Box;
-    def.size = size;
-    return collision_shape(make_rigid_body(def));
-}
-
-CollisionShape ball(double radius) {
-    RigidBodyDef def;
-    def.name = "ball";
-    def.shape = ShapeKind::Sphere;
-    def.radius = radius;
-    return collision_shape(make_rigid_body(def));
-}
-
-CollisionShape cylinder(double radius, double height) {
-    RigidBodyDef def;
-    def.name = "cylinder";
-    def.shape = ShapeKind::Cylinder;
-    def.radius = radius;
-    def.height = height;
-    return collision_shape(make_rigid_body(def));
-}
-
-Quat turn(const Vec3d& axis, double degrees) { return Quat::from_axis_angle(normalize(axis), degrees * kPi / 180.0); }
 
 Pose at(const Vec3d& x, const Quat& q = {}) { return {x, q}; }
 
