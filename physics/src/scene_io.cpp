@@ -204,7 +204,7 @@ json rigid_value_json(const RigidBodyDef& def, std::string_view key) {
     if (key == "radius") return def.radius ? json(*def.radius) : json();
     if (key == "height") return def.height ? json(*def.height) : json();
     if (key == "mesh") return def.mesh.empty() ? json() : json(def.mesh);
-    if (key == "scale") return def.shape == ShapeKind::Mesh ? json(def.scale) : json();
+    if (key == "scale") return def.shape == ShapeKind::Mesh || def.scale != 1.0 ? json(def.scale) : json();  // set on any shape: kept
     if (key == "mass") return def.mass ? json(*def.mass) : json();
     if (key == "density") return def.density ? json(*def.density) : json();
     if (key == "position") return def.position ? vec(*def.position) : json();
