@@ -31,7 +31,8 @@
 // How a dropped vertex is bound: to the nearest triangle of the kept particles' triangulation
 // (for a surface; triangles thinner than kMinQuality are not used), or to its nearest kept
 // particles for a point in no triangle (the nearest two, and of the next ten the one that
-// makes a well-shaped triangle with them and needs the smallest weights). The binding is the vertex's projection onto the triangle's
+// makes a well-shaped triangle with them and needs the smallest weights; the point on the line
+// through the two when all of them are nearly collinear). The binding is the vertex's projection onto the triangle's
 // plane in barycentric weights, plus its signed distance along the triangle's normal: at rest
 // it gives the vertex back exactly (up to float rounding), and under any rigid motion of the
 // three particles it moves rigidly with them.
@@ -105,6 +106,18 @@ SkinBinding bind_to(const Vec3d& q, const std::array<Index, 3>& particles, const
     binding.offset = static_cast<float>(dot(aq, n) / std::sqrt(nn));
     return binding;
 }
+
+// Whether a binding's numbers are finite in float: a point far from a nearly flat triangle gets
+// weights beyond float's range (a 1e-44 m bump on a 10 m line, a point 1 mm off it: 1e41).
+bool finite(const SkinBinding& binding) {
+    return std::isfinite(binding.weights[0]) && std::isfinite(binding.weights[1]) && std::isfinite(binding.weights[2]) &&
+           std::isfinite(binding.offset);
+}
+
+// The largest sum of |weights| a point may get from a triangle thinner than kMinQuality (the
+// best shaped of its near particles, when none is well shaped): beyond it the point is put on the
+// line through its nearest two instead, as if the particles were collinear.
+constexpr double kMaxThinSpread = 1e3;
 
 SkinBinding bind_to_itself(Index particle) {
     SkinBinding binding;
@@ -464,7 +477,7 @@ ReducedMesh reduce_mesh(const Mesh& full, std::size_t max_particles) {
         if (on_surface[i] && !corner_particles.empty()) {
             const Index t = nearest_triangle.nearest(q);
             reduced.bindings[i] = bind_to(q, corner_particles[t], corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]);
-            continue;
+            if (finite(reduced.bindings[i])) continue;  // else bound as a point, below
         }
         // A point: its nearest two kept particles, and the third that makes the best-shaped
         // triangle with them (the one whose weights for q stay smallest among the well-shaped).
@@ -482,7 +495,13 @@ ReducedMesh reduce_mesh(const Mesh& full, std::size_t max_particles) {
             const double spread = std::abs(trial.weights[0]) + std::abs(trial.weights[1]) + std::abs(trial.weights[2]);
             best = std::min(best, {spread, c});
         }
-        const Index c = best.second != kNotSimulated ? best.second : best_any;
+        Index c = best.second != kNotSimulated ? best.second : best_any;
+        if (best.second == kNotSimulated && c != kNotSimulated) {  // only thin triangles: is this one usable?
+            const SkinBinding thin = bind_to(q, {a, b, c}, kept_at[a], kept_at[b], kept_at[c]);
+            const double spread = std::abs(double(thin.weights[0])) + std::abs(double(thin.weights[1])) +
+                                  std::abs(double(thin.weights[2]));
+            if (!finite(thin) || !(spread <= kMaxThinSpread)) c = kNotSimulated;
+        }
         if (c != kNotSimulated) {
             reduced.bindings[i] = bind_to(q, {a, b, c}, kept_at[a], kept_at[b], kept_at[c]);
         } else if (a != b) {  // every near particle on one line: the point on it
