@@ -3,7 +3,7 @@
 #   ./dev.sh demo   install what is missing, build, open the interactive demo
 #   ./dev.sh test   install what is missing, build, run every test; then the unit, kernel and CLI
 #                   tests again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/),
-#                   and a few seconds of each fuzz target (clang, build-fuzz/)
+#                   and a fixed set of inputs to each fuzz target (clang, build-fuzz/)
 #   ./dev.sh soak   install, build, run the demo for 20,000 scripted frames (virtual display)
 # Everything comes from Debian's packages; nothing is downloaded from anywhere else.
 # ffmpeg is for videos: the app's Record button and `softbody render --video` run it (found at run
@@ -53,11 +53,19 @@ sanitizer_tests() {
   echo "dev.sh: sanitizer build and tests took $(( SECONDS - start )) s"
 }
 
-# Each fuzz target for FUZZ_SECONDS (default 10) from its seeds and every input that once broke
-# it, copied to a temporary folder (the fuzzer adds what it finds there, never in tests/). A
+# Each fuzz target from its seeds and every input that once broke it, copied to a temporary
+# folder (the fuzzer adds what it finds there, never in tests/). By default a fixed seed and a
+# fixed number of inputs (FUZZ_RUNS, default 60,000: about 10 s a target here), the same amount
+# of fuzzing on any machine; with FUZZ_SECONDS set, for that long from a fresh seed each time,
+# to look for new findings. A
 # crash, a sanitizer's report, a broken invariant or a slow input fails, and its input is kept.
 fuzz_smoke() {
-  local start=$SECONDS seconds=${FUZZ_SECONDS:-10} work target
+  local start=$SECONDS work target budget
+  if [ -n "${FUZZ_SECONDS:-}" ]; then
+    budget=(-max_total_time="$FUZZ_SECONDS")
+  else
+    budget=(-seed=1 -runs="${FUZZ_RUNS:-60000}")
+  fi
   cmake --preset fuzz >/dev/null
   cmake --build --preset fuzz -j"$JOBS"
   work=$(mktemp -d "${TMPDIR:-/tmp}/softbody-fuzz.XXXXXX")
@@ -67,7 +75,7 @@ fuzz_smoke() {
     if [ -d tests/fuzz/regressions/"$target" ]; then
       find tests/fuzz/regressions/"$target" -type f -exec cp {} "$work/$target/" \;
     fi
-    if ! build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    if ! build-fuzz/tests/fuzz/"$target" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 \
          -dict=tests/fuzz/dict/"$target".dict -artifact_prefix="$work/" "$work/$target" >"$work/$target.log" 2>&1; then
       tail -n 60 "$work/$target.log" >&2
       echo "dev.sh: $target failed; its log and the input that failed are in $work" >&2
