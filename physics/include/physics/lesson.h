@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "physics/mass_properties.h"
 #include "physics/scene_io.h"
 #include "physics/world.h"
 
@@ -99,6 +100,9 @@ private:
     bool left_slope_ = false;
     // stability: when it diverged.
     std::optional<double> diverged_at_;
+    // inertia: the body's own shape as triangles, integrated by Eq. 29-31 (unit density); none
+    // for a mesh body, whose tensor comes from its triangles already.
+    std::optional<MassProperties> from_triangles_;
     // flip_period: the intermediate axis's component of omega, and the times it changed sign.
     int axis_ = 1;
     double last_w_ = 0.0;
