@@ -46,6 +46,8 @@ constexpr ClosedFormInfo kForms[] = {
      "a rigid body spinning about a principal axis"},
     {"flip_period", "Eq. 26, 28", "the intermediate-axis flip period, 2 K(k) sqrt(I1 I2 I3 / ...)",
      "a rigid body spinning near its intermediate axis"},
+    {"collision", "Eq. 37, 38", "the first hit's impulse lambda and the velocities and spin it leaves",
+     "the rigid body that is hit"},
 };
 
 __attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
@@ -258,7 +260,12 @@ void LessonMeter::start(const World& world) {
     left_slope_ = false;
     diverged_at_.reset();
     crossings_.clear();
+    hit_.reset();
+    before_.clear();
     const std::string& kind = expect_.kind;
+    if (kind == "collision") {
+        for (std::size_t i = 0; i < world.rigid_body_count(); ++i) before_.push_back(world.rigid_motion(i));
+    }
     if (kind == "spring_period" || kind == "damper_decay") {
         const Link& l = world.links()[link_];
         recent_.push_back(length(world.link_end_position(l.b) - world.link_end_position(l.a)));
@@ -306,6 +313,29 @@ void LessonMeter::observe(const World& world) {
         const bool on = touches(world, body_, slope_);
         if (!on && !slide_.empty()) left_slope_ = true;
         if (on && !left_slope_ && v > 5e-3) slide_.emplace_back(t, v);
+    } else if (kind == "collision") {
+        // The first contact of the body closing faster than 1 cm/s (the Last collision panel's
+        // rule in a world without gravity): its terms, and the motion on both sides of the tick.
+        for (const RigidContact& c : world.contacts()) {
+            if (hit_) break;
+            if (c.soft >= 0 || !(c.approach_speed > 0.01)) continue;
+            const bool is_a = c.a == body_, is_b = c.b >= 0 && std::size_t(c.b) == body_;
+            if (!is_a && !is_b) continue;
+            Hit h;
+            h.terms = world.impulse_terms(c);
+            h.sign = is_a ? 1.0 : -1.0;
+            if (is_b) h.other = std::size_t(c.a);
+            else if (c.b >= 0) h.other = std::size_t(c.b);
+            h.body_before = before_[body_];
+            h.body_after = world.rigid_motion(body_);
+            if (h.other) {
+                h.other_before = before_[*h.other];
+                h.other_after = world.rigid_motion(*h.other);
+            }
+            h.time = t;
+            hit_ = h;
+        }
+        for (std::size_t i = 0; i < world.rigid_body_count() && i < before_.size(); ++i) before_[i] = world.rigid_motion(i);
     } else if (kind == "flip_period") {
         // The times the intermediate axis's omega changes sign, each placed between two ticks
         // by linear interpolation.
@@ -466,6 +496,47 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         L.measured_text = rigid_touches_anything(world, body_) ? "now (a contact changes it)" : "now";
         L.tolerance = 1e-6;
         out.push_back(L);
+    } else if (kind == "collision") {
+        // Eq. 38 at the first hit: lambda = -(1 + e) v_rel . n / (1/m_1 + 1/m_2 + n . ((J_1^-1
+        // (r_1 x n)) x r_1) + n . ((J_2^-1 (r_2 x n)) x r_2)), from the velocities just before,
+        // e and the masses as they are; then Eq. 37: each body's P changes by its +-lambda n and
+        // its L by r x (+-lambda n). Measured from the motion itself, before and after the tick.
+        const RigidBody& b = world.rigid_body(body_);
+        Comparison lambda = comparison("lambda, the impulse", "-(1 + e) v_rel . n / (1/m_1 + 1/m_2 + rotation terms)", "Eq. 38", "N s");
+        lambda.tolerance = 1e-6;
+        if (!hit_) {
+            lambda.predicted = kNaN;
+            lambda.predicted_text = "at the first hit";
+            out.push_back(lambda);
+            return out;
+        }
+        const Hit& h = *hit_;
+        const Vec3d n = h.terms.n;
+        const double s = h.sign;
+        lambda.predicted = h.terms.lambda;
+        lambda.measured = s * b.mass * dot(h.body_after.v - h.body_before.v, n);
+        lambda.measured_text = format("from the change of its momentum at t = %.2f s", h.time);
+        lambda.agrees = within(*lambda.measured, lambda.predicted, lambda.tolerance);
+        out.push_back(lambda);
+
+        // Its spin after: w' = J_world^-1 (L + r x (+-lambda n)), with J_world as it is after the tick.
+        const Vec3d r = s > 0.0 ? h.terms.r1 : h.terms.r2;
+        Comparison spin = comparison("|w| after, of '" + b.name + "'", "J_world^-1 (L + r x lambda n)", "Eq. 37, 36", "rad/s");
+        spin.predicted = length(h.body_after.J_inv * (h.body_before.L + cross(r, n * (s * h.terms.lambda))));
+        spin.measured = length(h.body_after.omega);
+        spin.tolerance = 1e-6;
+        spin.agrees = within(*spin.measured, spin.predicted, spin.tolerance);
+        out.push_back(spin);
+
+        if (h.other) {  // the other body's velocity along n after: it takes the opposite impulse
+            const RigidBody& o = world.rigid_body(*h.other);
+            Comparison v = comparison("v . n after, of '" + o.name + "'", "v' = v + J / m, J its impulse (-lambda n)", "Eq. 37", "m/s");
+            v.predicted = dot(h.other_before.v, n) - s * h.terms.lambda / o.mass;
+            v.measured = dot(h.other_after.v, n);
+            v.tolerance = 1e-6;
+            v.agrees = within(*v.measured, v.predicted, v.tolerance);
+            out.push_back(v);
+        }
     } else if (kind == "quaternion_norm") {
         // Eq. 35 by explicit Euler (Listing 9): q' = q + h/2 w q. For a spin about a principal
         // axis w stays put and w q is perpendicular to q (as 4-vectors), so each step multiplies

@@ -267,6 +267,35 @@ TEST(Lessons, SphereAndCylinderInertiaFromTrianglesMeetTableOne) {
     }
 }
 
+// Figure 7: the ball (1 kg, 1 m/s) hits the free rod (1 kg, 1 m x 4 cm x 4 cm) 0.48 m from
+// its centre, e = 1, no friction: lambda = 2 v / (1/m + 1/m + 0.48^2 / J_zz), J_zz = m (1 +
+// 0.04^2) / 12, so 0.42013 N s; the rod spins at 0.48 lambda / J_zz = 2.4161 rad/s; the ball
+// leaves at 1 - lambda = 0.57987 m/s. What the motion did agrees with each to 1e-6 (one contact,
+// no friction, no gravity: the solver's impulse is Eq. 38's to rounding). And with
+// restitution 0.5 and a 5 kg ball, the prediction follows the keys.
+TEST(Lessons, Figure7HitIsEquation38) {
+    const double J = (1.0 + 0.04 * 0.04) / 12.0;
+    const double lambda = 2.0 / (2.0 + 0.48 * 0.48 / J);
+    const LessonRun before = run_lesson("figure7.json", 0.3);
+    EXPECT_TRUE(std::isnan(find(before, "lambda, the impulse").predicted));  // not hit yet (0.78 m to go)
+    EXPECT_FALSE(find(before, "lambda, the impulse").measured.has_value());
+    const LessonRun run = run_lesson("figure7.json", 1.5);
+    const Comparison& l = find(run, "lambda, the impulse");
+    EXPECT_NEAR(l.predicted, lambda, 1e-9);
+    expect_agrees(l, "figure 7");
+    const Comparison& spin = find(run, "|w| after, of 'rod'");
+    EXPECT_NEAR(spin.predicted, 0.48 * lambda / J, 1e-6);
+    expect_agrees(spin, "figure 7");
+    const Comparison& ball = find(run, "v . n after, of 'ball'");
+    EXPECT_NEAR(std::abs(ball.predicted), 1.0 - lambda, 1e-9);
+    expect_agrees(ball, "figure 7");
+
+    const LessonRun heavy = run_lesson("figure7.json", 1.5, {{"restitution", "0.5"}, {"ball.mass", "5"}});
+    const Comparison& l2 = find(heavy, "lambda, the impulse");
+    EXPECT_NEAR(l2.predicted, 1.5 / (0.2 + 1.0 + 0.48 * 0.48 / J), 1e-9);
+    expect_agrees(l2, "figure 7, heavy ball");
+}
+
 // Explicit Euler's q + h/2 w q: |q| grows by sqrt(1 + (h w / 2)^2) a step, exactly (up to
 // rounding, 1e-6 after 150 steps); renormalised every 5 ticks it is back to 1 at each fifth.
 TEST(Lessons, QuaternionNormGrowsAsTheClosedFormSays) {

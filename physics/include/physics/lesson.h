@@ -103,6 +103,17 @@ private:
     // inertia: the body's own shape as triangles, integrated by Eq. 29-31 (unit density); none
     // for a mesh body, whose tensor comes from its triangles already.
     std::optional<MassProperties> from_triangles_;
+    // collision: every rigid body's motion as the last tick ended, and the first hit on the body
+    // (faster than 1 cm/s): Eq. 38's terms, and both bodies' motion before and after it.
+    struct Hit {
+        ImpulseTerms terms;
+        double sign = 1.0;                   // the body's impulse is sign * lambda * n (+1: it is body 1)
+        std::optional<std::size_t> other;    // the other rigid body; none for the ground
+        RigidMotion body_before, body_after, other_before, other_after;
+        double time = 0.0;
+    };
+    std::vector<RigidMotion> before_;
+    std::optional<Hit> hit_;
     // flip_period: the intermediate axis's component of omega, and the times it changed sign.
     int axis_ = 1;
     double last_w_ = 0.0;
