@@ -315,10 +315,11 @@ void LessonMeter::observe(const World& world) {
         if (on && !left_slope_ && v > 5e-3) slide_.emplace_back(t, v);
     } else if (kind == "collision") {
         // The first contact of the body closing faster than 1 cm/s (the Last collision panel's
-        // rule in a world without gravity): its terms, and the motion on both sides of the tick.
+        // rule in a world without gravity) that took an impulse (a contact found ahead, whose gap
+        // stays open this tick, takes none): its terms, and the motion on both sides of the tick.
         for (const RigidContact& c : world.contacts()) {
             if (hit_) break;
-            if (c.soft >= 0 || !(c.approach_speed > 0.01)) continue;
+            if (c.soft >= 0 || !(c.approach_speed > 0.01) || !(c.normal_impulse > 0.0)) continue;
             const bool is_a = c.a == body_, is_b = c.b >= 0 && std::size_t(c.b) == body_;
             if (!is_a && !is_b) continue;
             Hit h;
