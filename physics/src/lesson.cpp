@@ -221,13 +221,7 @@ LessonMeter::LessonMeter(LessonExpect expect, const World& world) : expect_(std:
         if (surface) {
             std::vector<Vec3d> corners;
             for (const Vec3& p : surface->positions) corners.push_back(Vec3d(p));
-            std::vector<std::array<std::uint32_t, 3>> triangles;
-            for (std::size_t k = 0; k + 2 < surface->triangles.size(); k += 3) {
-                triangles.push_back({surface->render_vertices[surface->triangles[k]].particle,
-                                     surface->render_vertices[surface->triangles[k + 1]].particle,
-                                     surface->render_vertices[surface->triangles[k + 2]].particle});
-            }
-            from_triangles_ = mesh_mass_properties(corners, triangles);
+            from_triangles_ = mesh_mass_properties(corners, particle_triangles(*surface));
         }
     }
     if (expect_.kind == "flip_period") {
@@ -317,15 +311,18 @@ void LessonMeter::observe(const World& world) {
         // The first contact of the body closing faster than 1 cm/s (the Last collision panel's
         // rule in a world without gravity) that took an impulse (a contact found ahead, whose gap
         // stays open this tick, takes none): its terms, and the motion on both sides of the tick.
-        for (const RigidContact& c : world.contacts()) {
-            if (hit_) break;
-            if (c.soft >= 0 || !(c.approach_speed > 0.01) || !(c.normal_impulse > 0.0)) continue;
-            const bool is_a = c.a == body_, is_b = c.b >= 0 && std::size_t(c.b) == body_;
-            if (!is_a && !is_b) continue;
+        const auto hits_body = [&](const RigidContact& c) {
+            return c.soft < 0 && c.approach_speed > 0.01 && c.normal_impulse > 0.0 &&
+                   (c.a == body_ || (c.b >= 0 && std::size_t(c.b) == body_));
+        };
+        const auto found = hit_ ? world.contacts().end() : std::find_if(world.contacts().begin(), world.contacts().end(), hits_body);
+        if (found != world.contacts().end()) {
+            const RigidContact& c = *found;
+            const bool is_a = c.a == body_;
             Hit h;
             h.terms = world.impulse_terms(c);
             h.sign = is_a ? 1.0 : -1.0;
-            if (is_b) h.other = std::size_t(c.a);
+            if (!is_a) h.other = std::size_t(c.a);
             else if (c.b >= 0) h.other = std::size_t(c.b);
             h.body_before = before_[body_];
             h.body_after = world.rigid_motion(body_);
@@ -509,7 +506,7 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
             lambda.predicted = kNaN;
             lambda.predicted_text = "at the first hit";
             out.push_back(lambda);
-            return out;
+            return out;  // nothing else to compare before the hit
         }
         const Hit& h = *hit_;
         const Vec3d n = h.terms.n;

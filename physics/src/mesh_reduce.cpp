@@ -114,6 +114,11 @@ bool finite(const SkinBinding& binding) {
            std::isfinite(binding.offset);
 }
 
+// The sum of |weights|: how far outside its triangle a binding reaches (1 inside it).
+double spread(const SkinBinding& binding) {
+    return std::abs(binding.weights[0]) + std::abs(binding.weights[1]) + std::abs(binding.weights[2]);
+}
+
 // The largest sum of |weights| a point may get from a triangle thinner than kMinQuality (the
 // best shaped of its near particles, when none is well shaped): beyond it the point is put on the
 // line through its nearest two instead, as if the particles were collinear.
@@ -484,6 +489,7 @@ ReducedMesh reduce_mesh(const Mesh& full, std::size_t max_particles) {
         const auto near = nearest_particles.nearest(q, 12);
         const Index a = near[0].second, b = near.size() > 1 ? near[1].second : a;
         std::pair<double, Index> best{std::numeric_limits<double>::infinity(), kNotSimulated};
+        SkinBinding chosen;  // best's binding
         double best_quality = 0.0;
         Index best_any = kNotSimulated;
         for (std::size_t k = 2; k < near.size(); ++k) {
@@ -492,18 +498,15 @@ ReducedMesh reduce_mesh(const Mesh& full, std::size_t max_particles) {
             if (shape > best_quality) best_quality = shape, best_any = c;
             if (shape < kMinQuality) continue;
             const SkinBinding trial = bind_to(q, {a, b, c}, kept_at[a], kept_at[b], kept_at[c]);
-            const double spread = std::abs(trial.weights[0]) + std::abs(trial.weights[1]) + std::abs(trial.weights[2]);
-            best = std::min(best, {spread, c});
+            if (const std::pair<double, Index> candidate{spread(trial), c}; candidate < best) best = candidate, chosen = trial;
         }
-        Index c = best.second != kNotSimulated ? best.second : best_any;
-        if (best.second == kNotSimulated && c != kNotSimulated) {  // only thin triangles: is this one usable?
-            const SkinBinding thin = bind_to(q, {a, b, c}, kept_at[a], kept_at[b], kept_at[c]);
-            const double spread = std::abs(double(thin.weights[0])) + std::abs(double(thin.weights[1])) +
-                                  std::abs(double(thin.weights[2]));
-            if (!finite(thin) || !(spread <= kMaxThinSpread)) c = kNotSimulated;
+        bool bound = best.second != kNotSimulated;
+        if (!bound && best_any != kNotSimulated) {  // only thin triangles: the best shaped, if usable
+            chosen = bind_to(q, {a, b, best_any}, kept_at[a], kept_at[b], kept_at[best_any]);
+            bound = finite(chosen) && spread(chosen) <= kMaxThinSpread;
         }
-        if (c != kNotSimulated) {
-            reduced.bindings[i] = bind_to(q, {a, b, c}, kept_at[a], kept_at[b], kept_at[c]);
+        if (bound) {
+            reduced.bindings[i] = chosen;
         } else if (a != b) {  // every near particle on one line: the point on it
             const Vec3d ab = kept_at[b] - kept_at[a];
             const double t = dot(q - kept_at[a], ab) / dot(ab, ab);

@@ -204,4 +204,14 @@ Mesh build_mesh(const RawMesh& raw, const std::string& source) {
     return mesh;
 }
 
+std::vector<std::array<std::uint32_t, 3>> particle_triangles(const Mesh& mesh) {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    out.reserve(mesh.triangle_count());
+    for (std::size_t k = 0; k + 2 < mesh.triangles.size(); k += 3) {
+        out.push_back({mesh.render_vertices[mesh.triangles[k]].particle, mesh.render_vertices[mesh.triangles[k + 1]].particle,
+                       mesh.render_vertices[mesh.triangles[k + 2]].particle});
+    }
+    return out;
+}
+
 }  // namespace softbody

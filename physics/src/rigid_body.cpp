@@ -124,12 +124,7 @@ Geometry mesh_geometry(const RigidBodyDef& def) {
     std::vector<Vec3d> points;
     points.reserve(mesh.positions.size());
     for (const Vec3& p : mesh.positions) points.push_back(Vec3d(p) * def.scale);
-    std::vector<std::array<std::uint32_t, 3>> triangles;
-    for (std::size_t k = 0; k + 2 < mesh.triangles.size(); k += 3) {
-        triangles.push_back({mesh.render_vertices[mesh.triangles[k]].particle,
-                             mesh.render_vertices[mesh.triangles[k + 1]].particle,
-                             mesh.render_vertices[mesh.triangles[k + 2]].particle});
-    }
+    const std::vector<std::array<std::uint32_t, 3>> triangles = particle_triangles(mesh);
     Geometry g;
     ConvexHull hull;
     try {

@@ -480,12 +480,7 @@ TEST(ConvexHull, HullMeshIsFlatShadedAndClosed) {
     }
     std::vector<Vec3d> corners;
     for (const Vec3& p : round_mesh.positions) corners.push_back(Vec3d(p));
-    std::vector<std::array<std::uint32_t, 3>> triangles;
-    for (std::size_t t = 0; t + 2 < round_mesh.triangles.size(); t += 3) {
-        triangles.push_back({round_mesh.render_vertices[round_mesh.triangles[t]].particle,
-                             round_mesh.render_vertices[round_mesh.triangles[t + 1]].particle,
-                             round_mesh.render_vertices[round_mesh.triangles[t + 2]].particle});
-    }
+    const std::vector<std::array<std::uint32_t, 3>> triangles = particle_triangles(round_mesh);
     EXPECT_TRUE(is_closed_oriented(triangles));
     const MassProperties a = mesh_mass_properties(corners, triangles);
     const MassProperties b = mesh_mass_properties(round.vertices, round.triangles());

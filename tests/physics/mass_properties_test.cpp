@@ -30,11 +30,7 @@ struct Solid {
 Solid solid_of(const Mesh& mesh) {
     Solid s;
     for (const Vec3& p : mesh.positions) s.vertices.push_back(Vec3d(p));
-    for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-        s.triangles.push_back({mesh.render_vertices[mesh.triangles[t]].particle,
-                               mesh.render_vertices[mesh.triangles[t + 1]].particle,
-                               mesh.render_vertices[mesh.triangles[t + 2]].particle});
-    }
+    s.triangles = particle_triangles(mesh);
     return s;
 }
 

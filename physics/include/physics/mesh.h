@@ -94,4 +94,8 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin);
 // collapse onto fewer than three particles are dropped. The RawMesh's warnings are passed on.
 Mesh build_mesh(const RawMesh& raw, const std::string& source);
 
+// The triangles on particles rather than render vertices, three particle indices each: the
+// solid the mesh encloses, for its mass properties (Eq. 29-31) and hull.
+std::vector<std::array<std::uint32_t, 3>> particle_triangles(const Mesh& mesh);
+
 }  // namespace softbody
