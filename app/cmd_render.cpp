@@ -259,6 +259,13 @@ int render_command(int argc, char** argv) {
         } else if (option == "--out") {
             out_dir = args.value(option);
             if (out_dir.empty()) throw UsageError("--out: expected a folder");
+            // `--out shot.png` would make a folder of that name: say where the images go instead.
+            std::string extension = std::filesystem::path(out_dir).extension().string();
+            for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            if (extension == ".png" || extension == ".mp4") {
+                throw UsageError("--out " + out_dir + ": a folder, not a file; the images go into it as <scene>_t<time>.png" +
+                                 (extension == ".mp4" ? " (a video: --video FILE.mp4)" : ""));
+            }
         } else if (option == "--size") {
             std::tie(width, height) = parse_size(args.value(option));
         } else if (option == "--camera") {
