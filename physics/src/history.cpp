@@ -5,17 +5,6 @@
 
 namespace softbody {
 
-namespace {
-
-bool same_grab(const std::optional<Grab>& a, const std::optional<Grab>& b) {
-    if (a.has_value() != b.has_value()) return false;
-    if (!a) return true;
-    return a->particle == b->particle && a->target == b->target && a->stiffness == b->stiffness && a->body == b->body &&
-           a->rigid == b->rigid && a->point == b->point;
-}
-
-}  // namespace
-
 History::History(std::uint64_t keyframe_every, std::uint64_t capacity_ticks)
     : keyframe_every_(std::max<std::uint64_t>(1, keyframe_every)), capacity_ticks_(std::max<std::uint64_t>(1, capacity_ticks)) {}
 
@@ -41,7 +30,7 @@ void History::apply(World& world, const TickInputs& inputs) {
             }
         }
     }
-    if (!same_grab(world.grab(), inputs.grab)) world.set_grab(inputs.grab);
+    if (world.grab() != inputs.grab) world.set_grab(inputs.grab);
 }
 
 void History::start(const World& world) {

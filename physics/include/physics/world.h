@@ -63,6 +63,7 @@ struct Grab {
     std::uint32_t body = 0;     // which soft body, or which rigid body when `rigid`
     bool rigid = false;
     Vec3d point;                // on a rigid body: the grabbed point, body axes from the centre of mass
+    bool operator==(const Grab&) const = default;
 };
 
 // Everything a tick carries into the next, copied out (World::snapshot): restored, the world
