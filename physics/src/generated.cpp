@@ -16,6 +16,7 @@ namespace {
 
 constexpr std::size_t kMaxCloud = 400000;  // the most particles a mesh may have
 constexpr std::size_t kMaxPile = 5000;
+constexpr std::size_t kMaxLayers = 30;  // pyramid:30 is 9,455 boxes
 
 struct Part {
     std::string_view kind, count;
@@ -26,7 +27,10 @@ Part split(std::string_view part) {
     const auto colon = part.find(':');
     if (colon == std::string_view::npos) return {};
     const std::string_view kind = part.substr(0, colon);
-    if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "torus" && kind != "lattice") return {};
+    if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "boxes" && kind != "pyramid" && kind != "torus" &&
+        kind != "lattice") {
+        return {};
+    }
     return {kind, part.substr(colon + 1)};
 }
 
@@ -124,32 +128,45 @@ Mesh cloud(std::size_t n) {
     return build_mesh(raw, "cloud:" + std::to_string(n));
 }
 
-// N bodies in layers of a square grid over a fixed bin, each turned at random (fixed seed):
-// boxes, spheres, cylinders and mesh bodies (icosahedra) in turn.
-void pile(std::size_t n, Scene& scene) {
+// A fixed bin for n bodies in layers of side x side at `pitch`: four walls 0.4 m high on the
+// ground. Returns the side.
+std::size_t bin(std::size_t n, double pitch, const char* prefix, Scene& scene) {
     const std::size_t side = std::max<std::size_t>(3, std::size_t(std::ceil(std::sqrt(double(n) / 2.0))));
-    const double pitch = 0.3, half = 0.5 * pitch * double(side) + 0.1;
+    const double half = 0.5 * pitch * double(side) + 0.1;
     const auto wall = [&](const char* name, Vec3d at, Vec3d size) {
         RigidBodyDef def;
-        def.name = name;
+        def.name = std::string(prefix) + name;
         def.shape = ShapeKind::Box;
         def.size = size;
         def.fixed = true;
         def.position = at;
         scene.rigid_bodies.push_back(def);
     };
-    wall("pile_wall_n", {0.0, half + 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
-    wall("pile_wall_s", {0.0, -half - 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
-    wall("pile_wall_e", {half + 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
-    wall("pile_wall_w", {-half - 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    wall("_wall_n", {0.0, half + 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
+    wall("_wall_s", {0.0, -half - 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
+    wall("_wall_e", {half + 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    wall("_wall_w", {-half - 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    return side;
+}
+
+// Body i of n in layers of side x side at `pitch` over the bin, 0.7 m up, 0.35 m a layer.
+Vec3d layer_position(std::size_t i, std::size_t side, double pitch) {
+    const std::size_t layer = i / (side * side), row = (i / side) % side, column = i % side;
+    return {(double(column) - 0.5 * double(side - 1)) * pitch, (double(row) - 0.5 * double(side - 1)) * pitch,
+            0.7 + 0.35 * double(layer)};
+}
+
+// N bodies in layers of a square grid over a fixed bin, each turned at random (fixed seed):
+// boxes, spheres, cylinders and mesh bodies (icosahedra) in turn.
+void pile(std::size_t n, Scene& scene) {
+    const double pitch = 0.3;
+    const std::size_t side = bin(n, pitch, "pile", scene);
     std::mt19937 rng(50u);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t layer = i / (side * side), row = (i / side) % side, column = i % side;
         RigidBodyDef def;
         def.name = "pile" + std::to_string(i + 1);
-        def.position = Vec3d{(double(column) - 0.5 * double(side - 1)) * pitch, (double(row) - 0.5 * double(side - 1)) * pitch,
-                             0.7 + 0.35 * double(layer)};
+        def.position = layer_position(i, side, pitch);
         def.orientation = Quat::from_degrees_xyz({360.0 * unit(rng), 90.0 * unit(rng), 360.0 * unit(rng)});
         def.density = 300.0 + 500.0 * unit(rng);
         switch (i % 4) {
@@ -174,6 +191,55 @@ void pile(std::size_t n, Scene& scene) {
                 break;
         }
         scene.rigid_bodies.push_back(def);
+    }
+}
+
+// N boxes and balls by turns, dropped into a bin as pile:N is (the scene engines compare
+// on): boxes 0.12 to 0.22 m a side, balls 0.12 to 0.22 m across, densities 300 to 800 kg/m^3,
+// each turned at random (fixed seed).
+void boxes(std::size_t n, Scene& scene) {
+    const double pitch = 0.3;
+    const std::size_t side = bin(n, pitch, "boxes", scene);
+    std::mt19937 rng(51u);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        RigidBodyDef def;
+        def.name = (i % 2 == 0 ? "box" : "ball") + std::to_string(i / 2 + 1);
+        def.position = layer_position(i, side, pitch);
+        def.orientation = Quat::from_degrees_xyz({360.0 * unit(rng), 90.0 * unit(rng), 360.0 * unit(rng)});
+        def.density = 300.0 + 500.0 * unit(rng);
+        if (i % 2 == 0) {
+            def.shape = ShapeKind::Box;
+            def.size = {0.12 + 0.1 * unit(rng), 0.12 + 0.1 * unit(rng), 0.12 + 0.1 * unit(rng)};
+        } else {
+            def.shape = ShapeKind::Sphere;
+            def.radius = 0.06 + 0.05 * unit(rng);
+        }
+        scene.rigid_bodies.push_back(def);
+    }
+}
+
+// A square pyramid of unit boxes (1 m cubes, 1,000 kg) standing on the ground: `layers` x
+// `layers` at the bottom, one fewer each way on each layer up, each box on the four below it,
+// 5 cm between neighbours in a layer; friction 0.6, no bounce. Placed touching, at rest.
+void pyramid(std::size_t layers, Scene& scene) {
+    const double pitch = 1.05;
+    for (std::size_t k = 0; k < layers; ++k) {
+        const std::size_t side = layers - k;
+        for (std::size_t row = 0; row < side; ++row) {
+            for (std::size_t column = 0; column < side; ++column) {
+                RigidBodyDef def;
+                def.name = "p" + std::to_string(k + 1) + "_" + std::to_string(row + 1) + "_" + std::to_string(column + 1);
+                def.shape = ShapeKind::Box;
+                def.size = Vec3d{1.0, 1.0, 1.0};
+                def.density = 1000.0;
+                def.position = Vec3d{(double(column) - 0.5 * double(side - 1)) * pitch,
+                                     (double(row) - 0.5 * double(side - 1)) * pitch, 0.5 + double(k)};
+                def.friction = 0.6f;
+                def.restitution = 0.0f;
+                scene.rigid_bodies.push_back(def);
+            }
+        }
     }
 }
 
@@ -210,7 +276,7 @@ Mesh generated_mesh(std::string_view name) {
         return lattice(a);
     }
     throw InputError(std::string(name) +
-                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N is a scene: use --scene)");
+                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N, boxes:N and pyramid:L are scenes: use --scene)");
 }
 
 Scene generated_scene(std::string_view name, const Scene& base) {
@@ -232,9 +298,13 @@ Scene generated_scene(std::string_view name, const Scene& base) {
             scene.params.max_particles = 0;
         } else if (part.kind == "pile") {
             pile(count_of(name, part, kMaxPile), scene);
+        } else if (part.kind == "boxes") {
+            boxes(count_of(name, part, kMaxPile), scene);
+        } else if (part.kind == "pyramid") {
+            pyramid(count_of(name, part, kMaxLayers), scene);
         } else {
             throw InputError(std::string(name) + ": '" + std::string(text) +
-                             "' is not cloud:N, ball:S, torus:RxS, lattice:A or pile:N");
+                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, pile:N, boxes:N or pyramid:L");
         }
         if (plus == std::string_view::npos) break;
         start = plus + 1;

@@ -13,6 +13,9 @@
 //   lattice:A   A^3 particles on a cubic grid filling a 1 m cube (A = 2 to 73), no faces
 //   pile:N      a scene of N rigid bodies (boxes, spheres, cylinders and icosahedra, ball:0,
 //               by turns, in layers) dropped into a fixed bin that grows with N
+//   boxes:N     a scene of N boxes and balls by turns dropped into a bin as pile:N is
+//   pyramid:L   a scene of a square pyramid of unit boxes, L layers (L x L at the bottom; 10
+//               layers are 385 boxes, 20 are 2,870), standing on the ground
 //   A+B         the scenes A and B together: pile:100+cloud:1000 is the bench's mixed scene
 //
 // A name is generated when it has this form; any other text is a file path.
@@ -26,7 +29,8 @@
 
 namespace softbody {
 
-// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N" and sums of them: a name,
+// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N", "boxes:N", "pyramid:L" and
+// sums of them: a name,
 // not a file.
 bool is_generated(std::string_view name);
 
