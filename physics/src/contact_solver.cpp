@@ -2,145 +2,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <bit>
+#include <numeric>
 #include <tuple>
 
 namespace softbody {
 
 namespace {
 
-// One side of a contact: a rigid body's state, a particle, or nothing (the ground: 1/m = 0,
-// J^-1 = 0).
-struct Side {
-    double* s = nullptr;               // a rigid body's thirteen numbers
-    const SolverParticles* p = nullptr;  // or a soft body's particles, and which one
-    std::size_t i = 0;
-    double inv_mass = 0.0;
-    Mat3 J_inv;  // world axes (Eq. 32), fixed for the velocity pass; zero for a particle
+using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
+Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
-    bool moves() const { return inv_mass > 0.0 || !(J_inv == Mat3{}); }
-    Vec3d centre() const {
-        if (s) return {s[rigid::X], s[rigid::X + 1], s[rigid::X + 2]};
-        if (p) return {p->x[i], p->y[i], p->z[i]};
-        return {};
-    }
-    // Velocity of the body's material point at offset r from its centre of mass: v + w x r.
-    Vec3d point_velocity(const Vec3d& r) const {
-        if (p) return {p->vx[i], p->vy[i], p->vz[i]};
-        if (!s || !moves()) return {};
-        const Vec3d v = Vec3d{s[rigid::P], s[rigid::P + 1], s[rigid::P + 2]} * inv_mass;
-        const Vec3d omega = J_inv * Vec3d{s[rigid::L], s[rigid::L + 1], s[rigid::L + 2]};
-        return v + cross(omega, r);
-    }
-    // An impulse j at offset r: P += j (Eq. 9, 10), L += r x j (Eq. 37); a particle's v += j / m.
-    void apply(const Vec3d& j, const Vec3d& r) const {
-        if (inv_mass == 0.0) return;
-        if (p) {
-            p->vx[i] = float(double(p->vx[i]) + j.x * inv_mass);
-            p->vy[i] = float(double(p->vy[i]) + j.y * inv_mass);
-            p->vz[i] = float(double(p->vz[i]) + j.z * inv_mass);
-            return;
-        }
-        const Vec3d dL = cross(r, j);
-        for (int k = 0; k < 3; ++k) {
-            s[rigid::P + k] += j[k];
-            s[rigid::L + k] += dL[k];
-        }
-    }
-    // The position pass's move of the centre (and, for a particle, of the particle).
-    void move(const Vec3d& d) const {
-        if (p) {
-            p->x[i] = float(double(p->x[i]) + d.x);
-            p->y[i] = float(double(p->y[i]) + d.y);
-            p->z[i] = float(double(p->z[i]) + d.z);
-        } else if (s) {
-            for (int k = 0; k < 3; ++k) s[rigid::X + k] += d[k];
-        }
-    }
+// A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,
+// written for one implicit step of h. bias_rate turns a depth into a velocity; mass_scale and
+// impulse_scale soften the impulse so the push apart is that spring's, whatever the masses.
+struct Softness {
+    double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
 };
-
-Side rigid_side(std::span<const SolverBody> bodies, std::int64_t index) {
-    Side side;
-    if (index < 0) return side;
-    const SolverBody& b = bodies[static_cast<std::size_t>(index)];
-    side.s = b.state;
-    side.inv_mass = b.inv_mass;
-    const Quat q{b.state[rigid::Q], b.state[rigid::Q + 1], b.state[rigid::Q + 2], b.state[rigid::Q + 3]};
-    const Mat3 R = q.to_matrix();
-    side.J_inv = R * b.J_body_inv * R.transposed();
-    return side;
+Softness make_soft(double hertz, double zeta, double h) {
+    if (hertz <= 0.0) return {};
+    const double omega = 2.0 * 3.14159265358979323846 * hertz;
+    const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+    return {omega / a1, a2 * a3, a3};
 }
 
-Side side_a(const RigidContact& c, std::span<const SolverBody> bodies, std::span<const SolverParticles> particles) {
-    if (c.soft < 0) return rigid_side(bodies, c.a);
-    Side side;
-    side.p = &particles[std::size_t(c.soft)];
-    side.i = c.a;
-    side.inv_mass = side.p->inv_mass[c.a];
-    return side;
+Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
+
+// q turned further by the small turn theta (world axes), its length kept.
+Quat turned(const Quat& q, const Vec3d& theta) {
+    const double angle = length(theta);
+    if (!(angle > 0.0)) return q;
+    return Quat::from_axis_angle(theta / angle, angle) * q;
 }
 
-// Two unit tangents completing n, chosen from n alone (so that a persisting contact keeps them).
-void tangents(const Vec3d& n, Vec3d& t1, Vec3d& t2) {
+}  // namespace
+
+void contact_tangents(const Vec3d& n, Vec3d& t1, Vec3d& t2) {
     const Vec3d axis = std::abs(n.x) < 0.57735 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
     t1 = normalize(cross(n, axis));
     t2 = cross(n, t1);
 }
 
-struct Row {
-    Side a, b;
-    Vec3d r_a, r_b, t1, t2;
-    double k_n = 0.0, k_t1 = 0.0, k_t2 = 0.0;  // inverse effective masses (Eq. 38's denominator)
-    double target = 0.0;                      // least normal velocity allowed: 0, or -gap / h
-    double v_n0 = 0.0;                        // normal velocity before any impulse (< 0: approaching)
-    double mu = 0.0;                          // this step's friction coefficient
-};
-
-using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
-Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
-// The pair of bodies a contact belongs to: a soft body's particles count as one body here.
-using Pair = std::tuple<std::int32_t, std::uint32_t, std::int32_t>;
-Pair pair_of(const RigidContact& c) { return {c.soft, c.soft >= 0 ? 0u : c.a, c.b}; }
-
-// Where each manifold starts: the contacts of one pair of bodies lie next to each other (the
-// ground's of one body too; each particle is a manifold of its own); the last entry is the end.
-std::vector<std::size_t> manifolds(const std::vector<RigidContact>& contacts) {
-    std::vector<std::size_t> start{0};
-    for (std::size_t i = 1; i < contacts.size(); ++i) {
-        const RigidContact &c = contacts[i], &d = contacts[i - 1];
-        if (c.a != d.a || c.b != d.b || c.soft != d.soft) start.push_back(i);
-    }
-    start.push_back(contacts.size());
-    return start;
-}
-
-// Rotates q by the small turn theta (world axes), keeping |q| as it is.
-void turn(double* s, const Vec3d& theta) {
-    const double angle = length(theta);
-    if (angle == 0.0) return;
-    const Quat q{s[rigid::Q], s[rigid::Q + 1], s[rigid::Q + 2], s[rigid::Q + 3]};
-    const Quat turned = Quat::from_axis_angle(theta / angle, angle) * q;
-    s[rigid::Q] = turned.w;
-    s[rigid::Q + 1] = turned.x;
-    s[rigid::Q + 2] = turned.y;
-    s[rigid::Q + 3] = turned.z;
-}
-
-// The impulse along n that brings the contact's normal velocity to `target`, the total kept
-// >= 0 (Eq. 38 with the target in place of -e v_n).
-void normal_impulse(RigidContact& c, Row& row, double target) {
-    const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-    const double lambda = std::max(c.normal_impulse + (target - dot(v_rel, c.normal)) / row.k_n, 0.0);
-    const Vec3d j = c.normal * (lambda - c.normal_impulse);
-    c.normal_impulse = lambda;
-    row.a.apply(j, row.r_a);
-    row.b.apply(-j, row.r_b);
-}
-
-}  // namespace
-
 Vec3d contact_impulse(const RigidContact& c) {
     Vec3d t1, t2;
-    tangents(c.normal, t1, t2);
+    contact_tangents(c.normal, t1, t2);
     return c.normal * c.normal_impulse + t1 * c.tangent_impulse[0] + t2 * c.tangent_impulse[1];
 }
 
@@ -149,216 +54,682 @@ double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& 
     return inv_m_a + inv_m_b + dot(n, cross(J_inv_a * cross(r_a, n), r_a)) + dot(n, cross(J_inv_b * cross(r_b, n), r_b));
 }
 
-void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::vector<RigidContact>& previous,
-                              std::span<const SolverBody> bodies, std::span<const SolverParticles> particles,
-                              const SolverSettings& settings) {
+// ---------------------------------------------------------------------------------------------
+// Prepare: bodies, manifolds, anchors, masses, warm starts, islands.
+// ---------------------------------------------------------------------------------------------
+void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vector<RigidContact>& previous,
+                            const ContactWorld& world, const ContactSettings& settings) {
+    settings_ = settings;
+    h_ = settings.dt / double(settings.substeps);
+    energy_ = {};
+    bodies_.assign(1, Body{});
+    manifolds_.clear();
+    points_.clear();
+    rigid_index_.assign(world.bodies.size(), 0);
     if (contacts.empty()) return;
-    // Last step's contacts by key, to find each persisting one in log time.
-    std::vector<std::size_t> last(previous.size());
-    for (std::size_t k = 0; k < last.size(); ++k) last[k] = k;
-    std::sort(last.begin(), last.end(), [&](std::size_t x, std::size_t y) { return key_of(previous[x]) < key_of(previous[y]); });
 
-    std::vector<Row> rows(contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-        RigidContact& c = contacts[i];
-        Row& row = rows[i];
-        row.a = side_a(c, bodies, particles);
-        row.b = rigid_side(bodies, c.b);
-        row.r_a = c.soft >= 0 ? Vec3d{} : c.arm_a;
-        row.r_b = c.b < 0 ? Vec3d{} : c.arm_b;
-        tangents(c.normal, row.t1, row.t2);
-        row.k_n = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, c.normal);
-        row.k_t1 = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, row.t1);
-        row.k_t2 = effective_inverse_mass(row.a.inv_mass, row.a.J_inv, row.r_a, row.b.inv_mass, row.b.J_inv, row.r_b, row.t2);
-        const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-        row.v_n0 = dot(v_rel, c.normal);
-        c.approach_speed = -row.v_n0;
-        // Stop the approach; a contact still apart may close its gap this step, no more.
-        row.target = settings.speculative ? -std::max(c.separation, 0.0) / settings.h : 0.0;
-        // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
-        // for one already sliding: particle_contacts.h); a rigid body has one mu.
-        row.mu = c.soft >= 0 ? c.static_friction : c.friction;
-    }
-    // Warm start from the same contacts last step, once every approach is measured.
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-        RigidContact& c = contacts[i];
-        Row& row = rows[i];
-        c.normal_impulse = 0.0;
-        c.tangent_impulse[0] = c.tangent_impulse[1] = 0.0;
-        const auto found = std::lower_bound(last.begin(), last.end(), key_of(c), [&](std::size_t k, const Key& key) {
+    // Solver bodies, in order of first appearance (the contacts' order: the same on every run).
+    std::vector<std::vector<std::int32_t>> particle_index(world.particles.size());
+    const auto rigid_body = [&](std::int64_t b) -> std::uint32_t {
+        if (b < 0) return 0;
+        const RigidBody& body = world.bodies[std::size_t(b)];
+        if (body.fixed) return 0;
+        std::int32_t& at = rigid_index_[std::size_t(b)];
+        if (at == 0) {
+            Body s;
+            s.kind = Body::Kind::Rigid;
+            s.index = std::uint32_t(b);
+            s.inv_mass = body.inv_mass;
+            const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
+            s.x0 = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
+            s.q0 = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            const Mat3 R = s.q0.to_matrix();  // as Listing 9 turns q into R: the world's J_inv (Eq. 32)
+            s.inv_I = R * body.J_body_inv * R.transposed();
+            s.I = R * body.J_body * R.transposed();
+            at = std::int32_t(bodies_.size());
+            bodies_.push_back(s);
+        }
+        return std::uint32_t(at);
+    };
+    const auto particle = [&](std::int32_t soft, std::uint32_t i) -> std::uint32_t {
+        std::vector<std::int32_t>& map = particle_index[std::size_t(soft)];
+        const SolverParticles& p = world.particles[std::size_t(soft)];
+        if (p.inv_mass[i] == 0.0f) return 0;  // pinned: it does not move
+        if (map.empty()) map.assign(world.particle_step_start_v[std::size_t(soft)]->size(), 0);
+        if (map[i] == 0) {
+            Body s;
+            s.kind = Body::Kind::Particle;
+            s.index = i;
+            s.soft = soft;
+            s.inv_mass = p.inv_mass[i];
+            s.x0 = {p.x[i], p.y[i], p.z[i]};
+            map[i] = std::int32_t(bodies_.size());
+            bodies_.push_back(s);
+        }
+        return std::uint32_t(map[i]);
+    };
+
+    // Last tick's contacts by key, to find each persisting one in log time.
+    std::vector<std::uint32_t> last(previous.size());
+    std::iota(last.begin(), last.end(), 0u);
+    std::sort(last.begin(), last.end(), [&](std::uint32_t x, std::uint32_t y) { return key_of(previous[x]) < key_of(previous[y]); });
+    const auto warm = [&](const RigidContact& c) -> const RigidContact* {
+        const auto found = std::lower_bound(last.begin(), last.end(), key_of(c), [&](std::uint32_t k, const Key& key) {
             return key_of(previous[k]) < key;
         });
-        if (found != last.end() && key_of(previous[*found]) == key_of(c)) {
-            // The impulse that held it, not the bounce: starting a contact that just bounced from
-            // its bounce would throw the body up again (a box landing flat then rocks for ever).
-            const RigidContact& p = previous[*found];
-            c.normal_impulse = p.resting_impulse;
-            c.tangent_impulse[0] = p.tangent_impulse[0];
-            c.tangent_impulse[1] = p.tangent_impulse[1];
-            const Vec3d j = c.normal * c.normal_impulse + row.t1 * c.tangent_impulse[0] + row.t2 * c.tangent_impulse[1];
-            row.a.apply(j, row.r_a);
-            row.b.apply(-j, row.r_b);
+        return found != last.end() && key_of(previous[*found]) == key_of(c) ? &previous[*found] : nullptr;
+    };
+
+    points_.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size();) {
+        const RigidContact& first = contacts[i];
+        Manifold m;
+        m.a = first.soft >= 0 ? particle(first.soft, first.a) : rigid_body(first.a);
+        m.b = rigid_body(first.b);
+        m.n = first.normal;
+        contact_tangents(m.n, m.t1, m.t2);
+        // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
+        // for one already sliding: particle_contacts.h); a rigid body has one mu.
+        m.mu = first.soft >= 0 ? first.static_friction : first.friction;
+        m.e = first.restitution;
+        m.first = std::uint32_t(i);
+        m.stiff = m.b == 0;
+        std::size_t end = i + 1;
+        if (first.soft < 0) {
+            while (end < contacts.size() && end < i + kMaxManifoldPoints && contacts[end].soft < 0 &&
+                   contacts[end].a == first.a && contacts[end].b == first.b) {
+                ++end;
+            }
         }
+        m.count = std::uint32_t(end - i);
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::size_t k = i; k < end; ++k) {
+            const RigidContact& c = contacts[k];
+            Point& p = points_[k];
+            p = Point{};
+            p.contact = std::uint32_t(k);
+            p.r_a = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
+            p.r_b = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
+            p.s0 = p.s = c.separation;
+            const double k_n = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.n);
+            const double k_1 = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.t1);
+            const double k_2 = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.t2);
+            p.normal_mass = k_n > 0.0 ? 1.0 / k_n : 0.0;
+            p.tangent_mass[0] = k_1 > 0.0 ? 1.0 / k_1 : 0.0;
+            p.tangent_mass[1] = k_2 > 0.0 ? 1.0 / k_2 : 0.0;
+            if (const RigidContact* before = warm(c)) {
+                // Kept as a force (impulse per second): the substep may have changed since.
+                p.normal_impulse = before->warm_normal * h_;
+                p.tangent_impulse[0] = before->warm_tangent[0] * h_;
+                p.tangent_impulse[1] = before->warm_tangent[1] * h_;
+            }
+        }
+        // K_ij: point i's change of normal velocity per unit impulse at point j (Eq. 38's
+        // denominator when i = j).
+        for (std::size_t x = i; x < end; ++x) {
+            for (std::size_t y = i; y < end; ++y) {
+                const Point &p = points_[x], &q = points_[y];
+                m.K[x - i][y - i] = A.inv_mass + B.inv_mass + dot(cross(p.r_a, m.n), A.inv_I * cross(q.r_a, m.n)) +
+                                    dot(cross(p.r_b, m.n), B.inv_I * cross(q.r_b, m.n));
+            }
+        }
+        manifolds_.push_back(m);
+        i = end;
     }
 
-    const std::vector<std::size_t> group_start = manifolds(contacts);
-    for (int iteration = 0; iteration < settings.velocity_iterations; ++iteration) {
-        for (std::size_t g = 0; g + 1 < group_start.size(); ++g) {
-            const std::size_t first = group_start[g], end = group_start[g + 1];
-            // The points of a manifold act on the same two bodies, and each changes what the
-            // others need: a few passes over the manifold before moving on solve it nearly as a
-            // whole, so that a face lands and rests on all its corners alike (one pass favours
-            // the corner it visits first, and a stack of boxes leans and creeps).
-            for (int pass = 0; pass < (end - first > 1 ? settings.manifold_passes : 1); ++pass) {
-                for (std::size_t i = first; i < end; ++i) {
-                    RigidContact& c = contacts[i];
-                    Row& row = rows[i];
-                    // Coulomb friction in impulse form: the tangential relative velocity brought
-                    // to zero while |lambda_t| <= mu lambda_n allows, and mu lambda_n against it
-                    // past that (Eq. 24's min(mu_s |F_n|, |F_t|) for a particle at rest, Eq. 25's
-                    // mu_d |F_n| for one sliding; one mu for two rigid bodies).
-                    if (row.mu > 0.0) {
-                        const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
-                        double t[2] = {c.tangent_impulse[0] - dot(v_rel, row.t1) / row.k_t1,
-                                       c.tangent_impulse[1] - dot(v_rel, row.t2) / row.k_t2};
-                        const double size = std::hypot(t[0], t[1]);
-                        const double limit = row.mu * c.normal_impulse;
-                        if (size > limit) {
-                            const double s = size > 0.0 ? limit / size : 0.0;
-                            t[0] *= s;
-                            t[1] *= s;
-                        }
-                        const Vec3d j = row.t1 * (t[0] - c.tangent_impulse[0]) + row.t2 * (t[1] - c.tangent_impulse[1]);
-                        c.tangent_impulse[0] = t[0];
-                        c.tangent_impulse[1] = t[1];
-                        row.a.apply(j, row.r_a);
-                        row.b.apply(-j, row.r_b);
-                    }
-                    normal_impulse(c, row, row.target);
+    // Islands: bodies joined by this tick's contacts (the static world joins nothing; a soft
+    // body's particles are one body here). Restitution's energy is bounded per island.
+    const std::size_t nodes = world.bodies.size() + world.particles.size();
+    std::vector<std::uint32_t> parent(nodes);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    const auto node = [&](const Body& s) -> std::uint32_t {
+        return s.kind == Body::Kind::Rigid ? s.index : std::uint32_t(world.bodies.size() + std::size_t(s.soft));
+    };
+    for (const Manifold& m : manifolds_) {
+        if (m.a == 0 || m.b == 0) continue;
+        const std::uint32_t x = find(node(bodies_[m.a])), y = find(node(bodies_[m.b]));
+        if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+    std::vector<std::int64_t> number(nodes, -1);
+    island_of_.assign(bodies_.size(), 0);
+    std::uint32_t islands = 0;
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        const std::uint32_t root = find(node(bodies_[b]));
+        if (number[root] < 0) number[root] = islands++;
+        island_of_[b] = std::uint32_t(number[root]);
+    }
+    for (Manifold& m : manifolds_) m.island = island_of_[m.a != 0 ? m.a : m.b];
+    absorbed_.assign(islands, 0.0);
+
+    // The approach as the tick began, for the record (the app's Last collision panel).
+    for (const Manifold& m : manifolds_) {
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            const RigidContact& c = contacts[k];
+            const auto velocity = [&](const Body& s, const Vec3d& r) -> Vec3d {
+                if (s.kind == Body::Kind::Rigid) {
+                    const double* y = &world.tick_start[s.index * rigid::kStateSize];
+                    const Vec3d P{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]}, L{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+                    return P * s.inv_mass + cross(s.inv_I * L, r);
                 }
-            }
-        }
-    }
-
-    for (RigidContact& c : contacts) c.resting_impulse = c.normal_impulse;
-
-    // Restitution: a contact hit this step (its gap closes within it) leaves at -e times the
-    // speed it came in with (Eq. 38's (1 + e)), when its pair of bodies meets faster than a
-    // resting contact does. Whether it was hit, not whether it took an impulse: four corners
-    // of a face landing flat share the impulse in many ways (three would do), and a corner
-    // left without any must bounce too. And the pair decides, not each point, by the mean
-    // approach of its points hit: corners coming down at about the resting speed would
-    // otherwise bounce or not by a hair, and a box would rock on them for ever. A few passes,
-    // so that the points of a face bounce together.
-    std::vector<char> hit(contacts.size(), 0);
-    std::vector<std::pair<Pair, double>> approach;  // (pair, speed) per point hit, then averaged
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-        const RigidContact& c = contacts[i];
-        hit[i] = settings.speculative ? c.separation + settings.h * rows[i].v_n0 <= 0.0 : c.depth >= 0.0;
-        if (hit[i]) approach.emplace_back(pair_of(c), -rows[i].v_n0);
-    }
-    std::sort(approach.begin(), approach.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    std::vector<Pair> bouncing;
-    for (std::size_t i = 0; i < approach.size();) {
-        std::size_t j = i;
-        double sum = 0.0;
-        for (; j < approach.size() && approach[j].first == approach[i].first; ++j) sum += approach[j].second;
-        if (sum / double(j - i) > settings.bounce_speed) bouncing.push_back(approach[i].first);
-        i = j;
-    }
-    for (int iteration = 0; iteration < settings.restitution_iterations && !bouncing.empty(); ++iteration) {
-        for (std::size_t i = 0; i < contacts.size(); ++i) {
-            RigidContact& c = contacts[i];
-            Row& row = rows[i];
-            if (c.restitution == 0.0 || !hit[i] || !(row.v_n0 < 0.0) ||
-                !std::binary_search(bouncing.begin(), bouncing.end(), pair_of(c))) {
-                continue;
-            }
-            normal_impulse(c, row, -c.restitution * row.v_n0);
-            if (settings.speculative) c.bounce_shift = (1.0 + c.restitution) * std::max(c.separation, 0.0);
+                if (s.kind == Body::Kind::Particle) {
+                    const SolverParticles& q = world.particles[std::size_t(s.soft)];
+                    return {q.vx[s.index], q.vy[s.index], q.vz[s.index]};
+                }
+                return {};
+            };
+            p.v_n0 = dot(velocity(bodies_[m.a], p.r_a) - velocity(bodies_[m.b], p.r_b), m.n);
+            (void)c;
         }
     }
 }
 
-void apply_bounce_shifts(const std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies,
-                         std::span<const SolverParticles> particles) {
-    // Each side's largest shift; particles are keyed after the rigid bodies.
-    std::vector<std::pair<double, Vec3d>> shift(bodies.size());
-    std::vector<std::tuple<std::int32_t, std::uint32_t, double, Vec3d>> particle_shift;
-    for (const RigidContact& c : contacts) {
-        if (c.bounce_shift <= 0.0) continue;
-        const Side a = side_a(c, bodies, particles), b = rigid_side(bodies, c.b);
-        const double total = a.inv_mass + b.inv_mass;
-        if (!(total > 0.0)) continue;
-        const double on_a = c.bounce_shift * a.inv_mass / total, on_b = c.bounce_shift * b.inv_mass / total;
-        if (c.soft >= 0) particle_shift.emplace_back(c.soft, c.a, on_a, c.normal * -on_a);
-        else if (on_a > shift[c.a].first) shift[c.a] = {on_a, c.normal * -on_a};
-        if (c.b >= 0 && on_b > shift[std::size_t(c.b)].first) shift[std::size_t(c.b)] = {on_b, c.normal * on_b};
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        if (shift[i].first > 0.0 && bodies[i].state) {
-            for (int n = 0; n < 3; ++n) bodies[i].state[rigid::X + n] += shift[i].second[n];
+// ---------------------------------------------------------------------------------------------
+// Each substep
+// ---------------------------------------------------------------------------------------------
+
+// The velocities the integrator left, where the substep began, and how far each body has come.
+void ContactSolver::load(const ContactWorld& world) {
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        Body& s = bodies_[b];
+        if (s.kind == Body::Kind::Rigid) {
+            const double* y = &world.state[s.index * rigid::kStateSize];
+            const double* y0 = &world.step_start[s.index * rigid::kStateSize];
+            s.v_free = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
+            s.w_free = s.inv_I * Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+            s.v_start = Vec3d{y0[rigid::P], y0[rigid::P + 1], y0[rigid::P + 2]} * s.inv_mass;
+            s.w_start = s.inv_I * Vec3d{y0[rigid::L], y0[rigid::L + 1], y0[rigid::L + 2]};
+            // Where the substep began: the positions move on from the integrator's by the contacts' share.
+            s.dp = Vec3d{y0[rigid::X], y0[rigid::X + 1], y0[rigid::X + 2]} - s.x0;
+            s.turn = rotation_of(Quat{y0[rigid::Q], y0[rigid::Q + 1], y0[rigid::Q + 2], y0[rigid::Q + 3]}) *
+                     rotation_of(s.q0).transposed();
+        } else {
+            const SolverParticles& p = world.particles[std::size_t(s.soft)];
+            const Vec3Array& v0 = *world.particle_step_start_v[std::size_t(s.soft)];
+            s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
+            s.v_start = Vec3d(v0[s.index]);
+            s.w_free = s.w_start = {};
+            s.turn = Mat3::identity();
         }
-    }
-    for (const auto& [soft, i, amount, d] : particle_shift) {
-        Side side;
-        side.p = &particles[std::size_t(soft)];
-        side.i = i;
-        side.move(d);
-        (void)amount;
+        s.v = s.v_free;
+        s.w = s.w_free;
     }
 }
 
-// Positions: what penetration is left beyond the slop is taken out, along the normal, by
-// moving and turning the bodies as an impulse would (nonlinear Gauss-Seidel). It changes x and
-// q only, never P or L: no energy is added. Each body's turns within a pass are summed as a
-// rotation vector and applied once at the pass's end: small rotations applied one after
-// another about different axes compose into a turn about a third (their commutator), which
-// would make a box resting on four corners creep about the vertical.
-void solve_contact_positions(std::vector<RigidContact>& contacts, std::span<const SolverBody> bodies,
-                             std::span<const SolverParticles> particles, const SolverSettings& settings) {
-    if (contacts.empty()) return;
-    const std::vector<std::size_t> group_start = manifolds(contacts);
-    std::vector<Vec3d> turns(bodies.size());
-    for (int iteration = 0; iteration < settings.position_iterations; ++iteration) {
-        std::fill(turns.begin(), turns.end(), Vec3d{});
-        for (std::size_t g = 0; g + 1 < group_start.size(); ++g) {
-            const std::size_t first = group_start[g], end = group_start[g + 1];
-            // Several passes over a manifold, as for the impulses: one pass lifts the corner it
-            // visits first the most, and a stack leans.
-            for (int pass = 0; pass < (end - first > 1 ? settings.manifold_passes : 1); ++pass) {
-                for (std::size_t i = first; i < end; ++i) {
-                    RigidContact& c = contacts[i];
-                    const Side a = side_a(c, bodies, particles), b = rigid_side(bodies, c.b);
-                    // Anchors where the bodies are now: R r turned further by this pass's turn so far.
-                    const auto anchor = [&](const Side& side, std::int64_t index, const Vec3d& local) {
-                        const Quat q{side.s[rigid::Q], side.s[rigid::Q + 1], side.s[rigid::Q + 2], side.s[rigid::Q + 3]};
-                        const Vec3d r = q.to_matrix() * local;
-                        return side.centre() + r + cross(turns[std::size_t(index)], r);
-                    };
-                    const Vec3d p_a = c.soft >= 0 ? a.centre() : anchor(a, c.a, c.local_a);
-                    const Vec3d p_b = b.s ? anchor(b, c.b, c.local_b) : c.local_b;  // the ground: a point on its plane
-                    const double separation = dot(p_a - p_b, c.normal);
-                    const double C =
-                        std::clamp(settings.position_rate * (separation + settings.slop), -settings.max_correction, 0.0);
-                    if (C >= 0.0) continue;
-                    const Vec3d r_a = c.soft >= 0 ? Vec3d{} : p_a - a.centre(), r_b = b.s ? p_b - b.centre() : Vec3d{};
-                    const double k = effective_inverse_mass(a.inv_mass, a.J_inv, r_a, b.inv_mass, b.J_inv, r_b, c.normal);
-                    if (!(k > 0.0)) continue;
-                    const Vec3d j = c.normal * (-C / k);
-                    if (a.inv_mass > 0.0) {
-                        a.move(j * a.inv_mass);
-                        if (c.soft < 0) turns[c.a] += a.J_inv * cross(r_a, j);
+// Each point's separation where the bodies are: as the tick began, moved on by each body's
+// move and turn since (the anchors turn with their bodies).
+void ContactSolver::separations(const ContactWorld& world) {
+    (void)world;
+    for (const Manifold& m : manifolds_) {
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            const Vec3d da = A.dp + A.turn * p.r_a - p.r_a, db = B.dp + B.turn * p.r_b - p.r_b;
+            p.s = p.s0 + dot(da - db, m.n);
+        }
+    }
+}
+
+// The work the contacts did on `bodies` since the integrator left them: the impulse m dv at
+// the substep's middle velocity, (v + v_free) / 2 - h g / 2, and the turn's change of
+// 1/2 w . J w. Zero for a body the contacts hold still under gravity.
+double ContactSolver::work(const Body& s) const {
+    if (s.inv_mass == 0.0) return 0.0;
+    const Vec3d dv = s.v - s.v_free;
+    double W = dot(dv, (s.v + s.v_free) * 0.5 - settings_.gravity * (0.5 * h_)) / s.inv_mass;
+    if (s.kind == Body::Kind::Rigid) W += 0.5 * (dot(s.w, s.I * s.w) - dot(s.w_free, s.I * s.w_free));
+    return W;
+}
+
+namespace {
+
+
+// v + w x r of a solver body at anchor r.
+template <class B>
+inline Vec3d point_velocity(const B& s, const Vec3d& r) {
+    return s.v + cross(s.w, r);
+}
+
+// An impulse j at anchor r: P += j (Eq. 9, 10), L += r x j (Eq. 37), as velocities.
+template <class B>
+inline void apply(B& s, const Vec3d& j, const Vec3d& r) {
+    s.v += j * s.inv_mass;
+    s.w += s.inv_I * cross(r, j);
+}
+
+// The normal impulses x >= 0 of a manifold's n <= 4 points acting together. K is their
+// coupling: K_ij the change of point i's normal velocity per unit impulse at point j (Eq. 38's
+// denominator on the diagonal). Each point's normal velocity, (K x)_i - b_i above its target,
+// must be zero where it pushes (x_i > 0) and may be more where it does not (x_i = 0): a linear
+// complementarity problem, solved exactly by trying the sets of pushing points from all of them
+// down, the first whose impulses are all pushes and whose other points do not close. A face's
+// four corners on a plane leave K singular (three would hold it: statically indeterminate);
+// where a pivot vanishes, 1e-9 of each diagonal added picks the solution with the least
+// impulses, which shares the load evenly (elsewhere the answer is exact). Returns false if no set fits (rounding at the edge of two sets).
+bool solve_block(int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+    constexpr double kRegular = 1e-9;
+    const int full = (1 << n) - 1;
+    // Sets by size, largest first: the points that pushed last time usually push now.
+    for (int size = n; size >= 0; --size) {
+        for (int set = full; set >= 0; --set) {
+            if (std::popcount(unsigned(set)) != size) continue;
+            int index[4], m = 0;
+            for (int i = 0; i < n; ++i) {
+                if (set & (1 << i)) index[m++] = i;
+            }
+            // Gaussian elimination with partial pivoting on K_SS x_S = b_S; again with the
+            // diagonal raised when a pivot vanishes (K singular on this set).
+            double A[4][5];
+            bool singular = false;
+            for (int attempt = 0; attempt < 2; ++attempt) {
+                double largest = 0.0;
+                for (int r = 0; r < m; ++r) {
+                    for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
+                    if (attempt == 1) A[r][r] += kRegular * K[index[r]][index[r]];
+                    A[r][m] = b[index[r]];
+                    largest = std::max(largest, std::abs(A[r][r]));
+                }
+                singular = false;
+                for (int c = 0; c < m && !singular; ++c) {
+                    int pivot = c;
+                    for (int r = c + 1; r < m; ++r) {
+                        if (std::abs(A[r][c]) > std::abs(A[pivot][c])) pivot = r;
                     }
-                    if (b.s && b.inv_mass > 0.0) {
-                        b.move(j * -b.inv_mass);
-                        turns[std::size_t(c.b)] += b.J_inv * cross(r_b, -j);
+                    if (!(std::abs(A[pivot][c]) > 1e-11 * largest)) {
+                        singular = true;
+                        break;
+                    }
+                    if (pivot != c) {
+                        for (int k = c; k <= m; ++k) std::swap(A[c][k], A[pivot][k]);
+                    }
+                    for (int r = c + 1; r < m; ++r) {
+                        const double f = A[r][c] / A[c][c];
+                        for (int k = c; k <= m; ++k) A[r][k] -= f * A[c][k];
                     }
                 }
+                if (!singular) break;
+            }
+            if (singular) continue;
+            double y[4] = {0.0, 0.0, 0.0, 0.0};
+            for (int r = m - 1; r >= 0; --r) {
+                double sum = A[r][m];
+                for (int k = r + 1; k < m; ++k) sum -= A[r][k] * y[k];
+                y[r] = sum / A[r][r];
+            }
+            bool fits = true;
+            double candidate[4] = {0.0, 0.0, 0.0, 0.0};
+            for (int r = 0; r < m; ++r) {
+                fits = fits && y[r] >= 0.0;
+                candidate[index[r]] = std::max(y[r], 0.0);
+            }
+            for (int i = 0; i < n && fits; ++i) {
+                if (set & (1 << i)) continue;
+                double w = -b[i];
+                for (int j = 0; j < n; ++j) w += K[i][j] * candidate[j];
+                fits = w >= -1e-12 * (std::abs(b[i]) + 1e-12);
+            }
+            if (!fits) continue;
+            for (int i = 0; i < n; ++i) x[i] = candidate[i];
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWorld& world) {
+    (void)contacts;
+    if (manifolds_.empty()) return;
+    const double h = h_, inv_h = 1.0 / h;
+    const Softness soft = make_soft(std::min(settings_.contact_hertz, 0.25 * inv_h), settings_.damping_ratio, h);
+    const Softness stiff = make_soft(2.0 * std::min(settings_.contact_hertz, 0.25 * inv_h), settings_.damping_ratio, h);
+    load(world);
+    separations(world);
+
+    // Which points bounce in this substep: one that met its surface in the last substep, or one
+    // touching now and coming in faster than a resting contact does. The bounce leaves at -e
+    // times that speed plus what the substep's forces add to it (as the free step would have).
+    bool bouncing = false;
+    for (Manifold& m : manifolds_) {
+        m.bouncing = false;
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            p.bounce = 0.0;
+            p.bounce_impulse = 0.0;
+            p.s_start = p.s;
+            if (m.e <= 0.0 && p.pending == 0.0) continue;
+            const double vn_start = dot((A.v_start + cross(A.w_start, p.r_a)) - (B.v_start + cross(B.w_start, p.r_b)), m.n);
+            const double vn_free = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
+            double speed = 0.0;
+            if (p.pending > 0.0) speed = p.pending;
+            else if (p.s <= settings_.touching && -vn_start > settings_.bounce_speed) speed = -vn_start;
+            p.pending = 0.0;
+            if (speed > 0.0 && m.e > 0.0) {
+                p.bounce = speed;
+                p.bounce_target = m.e * speed + (vn_free - vn_start);
+                m.bouncing = bouncing = true;
             }
         }
-        for (std::size_t i = 0; i < bodies.size(); ++i) {
-            if (bodies[i].state && bodies[i].inv_mass > 0.0) turn(bodies[i].state, turns[i]);
+    }
+
+    // Warm start: the impulses that held the contacts in the last substep, again.
+    for (Manifold& m : manifolds_) {
+        Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            const Vec3d j = m.n * p.normal_impulse + m.t1 * p.tangent_impulse[0] + m.t2 * p.tangent_impulse[1];
+            apply(A, j, p.r_a);
+            apply(B, -j, p.r_b);
+            p.total_normal += p.normal_impulse;
+            p.total_tangent[0] += p.tangent_impulse[0];
+            p.total_tangent[1] += p.tangent_impulse[1];
+        }
+    }
+
+    // One pass of Eq. 38 toward each point's target, then friction; `bias`: push overlaps apart.
+    const auto solve = [&](bool bias) {
+        for (Manifold& m : manifolds_) {
+            if (!bias && m.bouncing) continue;  // it leaves: nothing to relax, and no turn from it
+            Body &A = bodies_[m.a], &B = bodies_[m.b];
+            const Softness& softness = m.stiff ? stiff : soft;
+            // Each point's target normal velocity: 0 where it touches; minus the gap over h where
+            // it is still apart (close it in this substep, no more); where it overlaps, what one
+            // step of a soft spring pushing it out would leave (never faster than push_speed).
+            const int n = int(m.count);
+            double b[4], lambda[4];
+            for (int i = 0; i < n; ++i) {
+                const Point& p = points_[m.first + std::uint32_t(i)];
+                const double v_n = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
+                double target = 0.0;
+                if (p.s > 0.0) {
+                    target = -p.s * inv_h;
+                } else if (bias) {
+                    const double push = std::min(-softness.bias_rate * p.s, settings_.push_speed);
+                    target = (1.0 - softness.mass_scale) * v_n + softness.mass_scale * push -
+                             softness.impulse_scale * p.normal_impulse / p.normal_mass;
+                }
+                // (K x)_i - b_i is point i's normal velocity above its target with impulses x.
+                b[i] = target - v_n;
+                for (int j = 0; j < n; ++j) b[i] += m.K[i][j] * points_[m.first + std::uint32_t(j)].normal_impulse;
+            }
+            if (!solve_block(n, m.K, b, lambda)) {
+                for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
+            }
+            Vec3d J_a, L_a, L_b;
+            for (int i = 0; i < n; ++i) {
+                Point& p = points_[m.first + std::uint32_t(i)];
+                const double applied = lambda[i] - p.normal_impulse;
+                p.normal_impulse = lambda[i];
+                p.total_normal += applied;
+                const Vec3d j = m.n * applied;
+                J_a += j;
+                L_a += cross(p.r_a, j);
+                L_b += cross(p.r_b, j);
+            }
+            A.v += J_a * A.inv_mass;
+            A.w += A.inv_I * L_a;
+            B.v -= J_a * B.inv_mass;
+            B.w -= B.inv_I * L_b;
+            // Coulomb friction in impulse form: the tangential velocity brought to zero while
+            // |lambda_t| <= mu lambda_n allows (Eq. 24's min(mu_s |F_n|, |F_t|) for a particle
+            // at rest, Eq. 25's mu_d |F_n| for one sliding; one mu between rigid bodies).
+            if (m.mu <= 0.0) continue;
+            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+                Point& p = points_[k];
+                const Vec3d dv = point_velocity(A, p.r_a) - point_velocity(B, p.r_b);
+                double t[2] = {p.tangent_impulse[0] - dot(dv, m.t1) * p.tangent_mass[0],
+                               p.tangent_impulse[1] - dot(dv, m.t2) * p.tangent_mass[1]};
+                const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * p.normal_impulse;
+                if (size > limit) {
+                    const double scale = size > 0.0 ? limit / size : 0.0;
+                    t[0] *= scale;
+                    t[1] *= scale;
+                }
+                const double d0 = t[0] - p.tangent_impulse[0], d1 = t[1] - p.tangent_impulse[1];
+                p.tangent_impulse[0] = t[0];
+                p.tangent_impulse[1] = t[1];
+                p.total_tangent[0] += d0;
+                p.total_tangent[1] += d1;
+                const Vec3d j = m.t1 * d0 + m.t2 * d1;
+                apply(A, j, p.r_a);
+                apply(B, -j, p.r_b);
+            }
+        }
+    };
+    solve(true);
+
+    if (bouncing) restitute(false);
+
+    // The positions: the free step's, moved on by h times what the contacts changed.
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        Body& s = bodies_[b];
+        const Vec3d dx = (s.v - s.v_free) * h;
+        if (s.kind == Body::Kind::Rigid) {
+            double* y = &world.state[s.index * rigid::kStateSize];
+            for (int k = 0; k < 3; ++k) y[rigid::X + k] += dx[k];
+            const Quat q = turned(Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]}, (s.w - s.w_free) * h);
+            y[rigid::Q] = q.w;
+            y[rigid::Q + 1] = q.x;
+            y[rigid::Q + 2] = q.y;
+            y[rigid::Q + 3] = q.z;
+            s.dp = Vec3d{y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]} - s.x0;
+            s.turn = rotation_of(q) * rotation_of(s.q0).transposed();
+        } else {
+            SolverParticles& p = world.particles[std::size_t(s.soft)];
+            p.x[s.index] = float(double(p.x[s.index]) + dx.x);
+            p.y[s.index] = float(double(p.y[s.index]) + dx.y);
+            p.z[s.index] = float(double(p.z[s.index]) + dx.z);
+            s.dp = Vec3d{p.x[s.index], p.y[s.index], p.z[s.index]} - s.x0;
+        }
+    }
+    separations(world);
+    solve(false);  // relax
+
+    // A point still apart as the substep began that the solve or the relax had to stop met its
+    // surface in this substep: it bounces in the next, from the speed it met it with under the
+    // substep's acceleration.
+    for (Manifold& m : manifolds_) {
+        if (m.e <= 0.0) continue;
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
+            const double vn_start = dot((A.v_start + cross(A.w_start, p.r_a)) - (B.v_start + cross(B.w_start, p.r_b)), m.n);
+            const double vn_free = dot((A.v_free + cross(A.w_free, p.r_a)) - (B.v_free + cross(B.w_free, p.r_b)), m.n);
+            const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
+            const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
+            const bool closing = vn_start < 0.0 || a_n < 0.0;
+            if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::sqrt(speed2);
+        }
+    }
+
+    // The energy of this substep's contacts, island by island: what restitution may give back.
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        const double W = work(bodies_[b]);
+        absorbed_[island_of_[b]] -= W;
+        energy_.total += W;
+    }
+    store(world, false);
+}
+
+// Restitution: each bouncing point toward its bounce_target, a few passes (the points of a face
+// bounce together), then no more energy than the island's contacts took this tick.
+void ContactSolver::restitute(bool end_of_tick) {
+    std::vector<std::uint32_t> islands;
+    for (const Manifold& m : manifolds_) {
+        if (m.bouncing) islands.push_back(m.island);
+    }
+    std::sort(islands.begin(), islands.end());
+    islands.erase(std::unique(islands.begin(), islands.end()), islands.end());
+    // The bodies of those islands and their velocities before the bounce.
+    std::vector<std::uint32_t> touched;
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        if (std::binary_search(islands.begin(), islands.end(), island_of_[b])) touched.push_back(std::uint32_t(b));
+    }
+    std::vector<std::pair<Vec3d, Vec3d>> before(touched.size());
+    std::vector<double> W_before(absorbed_.size(), 0.0);
+    for (std::size_t k = 0; k < touched.size(); ++k) {
+        const Body& s = bodies_[touched[k]];
+        before[k] = {s.v, s.w};
+        if (!end_of_tick) W_before[island_of_[touched[k]]] += work(s);
+    }
+    // Each manifold's bouncing points together (solve_block), the round of manifolds a few
+    // times for manifolds that share a body.
+    for (int round = 0; round < settings_.restitution_passes; ++round) {
+        for (Manifold& m : manifolds_) {
+            if (!m.bouncing) continue;
+            Body &A = bodies_[m.a], &B = bodies_[m.b];
+            // The bouncing points only: the others stay as the solve left them.
+            int index[4], n = 0;
+            for (std::uint32_t k = 0; k < m.count; ++k) {
+                if (points_[m.first + k].bounce > 0.0) index[n++] = int(k);
+            }
+            double K[4][4], b[4], lambda[4];
+            for (int i = 0; i < n; ++i) {
+                const Point& p = points_[m.first + std::uint32_t(index[i])];
+                const double v_n = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
+                b[i] = p.bounce_target - v_n;
+                for (int j = 0; j < n; ++j) {
+                    K[i][j] = m.K[index[i]][index[j]];
+                    b[i] += K[i][j] * points_[m.first + std::uint32_t(index[j])].bounce_impulse;
+                }
+            }
+            if (!solve_block(n, K, b, lambda)) continue;
+            for (int i = 0; i < n; ++i) {
+                Point& p = points_[m.first + std::uint32_t(index[i])];
+                const Vec3d j = m.n * (lambda[i] - p.bounce_impulse);
+                p.bounce_impulse = lambda[i];
+                apply(A, j, p.r_a);
+                apply(B, -j, p.r_b);
+            }
+        }
+    }
+    // What the bounce gave each island, against what its contacts took: scaled down to fit.
+    for (std::uint32_t island : islands) {
+        double B_lin = 0.0, C = 0.0, W_after = 0.0;
+        const Vec3d half_hg = settings_.gravity * (end_of_tick ? 0.0 : 0.5 * h_);
+        for (std::size_t k = 0; k < touched.size(); ++k) {
+            if (island_of_[touched[k]] != island) continue;
+            const Body& s = bodies_[touched[k]];
+            const double m = 1.0 / s.inv_mass;
+            const Vec3d dv = s.v - before[k].first, dw = s.w - before[k].second;
+            // W(alpha) = alpha B + alpha^2 C for the bounce scaled by alpha.
+            B_lin += m * dot(dv, before[k].first - half_hg) + dot(before[k].second, s.I * dw);
+            C += 0.5 * (m * dot(dv, dv) + dot(dw, s.I * dw));
+        }
+        W_after = B_lin + C;
+        const double allowed = absorbed_[island] - W_before[island];
+        double alpha = 1.0;
+        if (W_after > allowed) {
+            alpha = 0.0;
+            if (allowed > 0.0 && C > 0.0) {
+                const double disc = B_lin * B_lin + 4.0 * C * allowed;
+                alpha = std::clamp((-B_lin + std::sqrt(std::max(disc, 0.0))) / (2.0 * C), 0.0, 1.0);
+            }
+            for (std::size_t k = 0; k < touched.size(); ++k) {
+                if (island_of_[touched[k]] != island) continue;
+                Body& s = bodies_[touched[k]];
+                s.v = before[k].first + (s.v - before[k].first) * alpha;
+                s.w = before[k].second + (s.w - before[k].second) * alpha;
+            }
+        }
+        for (Manifold& m : manifolds_) {
+            if (!m.bouncing || m.island != island) continue;
+            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce_impulse *= alpha;
+        }
+        const double W = alpha * B_lin + alpha * alpha * C;
+        energy_.restitution += W;
+        if (end_of_tick) {
+            absorbed_[island] -= W;
+            energy_.total += W;
+        }
+    }
+    for (Point& p : points_) p.total_bounce += p.bounce_impulse;
+}
+
+// The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's
+// L += r x j, as J_world dw), a particle's v, and Verlet's step with it.
+void ContactSolver::store(const ContactWorld& world, bool) {
+    for (std::size_t b = 1; b < bodies_.size(); ++b) {
+        const Body& s = bodies_[b];
+        if (s.kind == Body::Kind::Rigid) {
+            double* y = &world.state[s.index * rigid::kStateSize];
+            const Vec3d dP = (s.v - s.v_free) / s.inv_mass, dL = s.I * (s.w - s.w_free);
+            for (int k = 0; k < 3; ++k) {
+                y[rigid::P + k] += dP[k];
+                y[rigid::L + k] += dL[k];
+            }
+        } else {
+            SolverParticles& p = world.particles[std::size_t(s.soft)];
+            p.vx[s.index] = float(s.v.x);
+            p.vy[s.index] = float(s.v.y);
+            p.vz[s.index] = float(s.v.z);
+            if (p.verlet_x) {
+                const float h = float(h_);
+                p.verlet_x[s.index] = p.vx[s.index] * h;
+                p.verlet_y[s.index] = p.vy[s.index] * h;
+                p.verlet_z[s.index] = p.vz[s.index] * h;
+            }
+        }
+    }
+}
+
+void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWorld& world) {
+    if (manifolds_.empty()) return;
+    // The bounces still due: points that met their surface in the last substep, from there.
+    bool due = false;
+    for (Manifold& m : manifolds_) {
+        m.bouncing = false;
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            p.bounce = 0.0;
+            p.bounce_impulse = 0.0;
+            if (p.pending > 0.0 && m.e > 0.0) {
+                p.bounce = p.pending;
+                p.bounce_target = m.e * p.pending;
+                m.bouncing = due = true;
+            }
+            p.pending = 0.0;
+        }
+    }
+    if (due) {
+        for (std::size_t b = 1; b < bodies_.size(); ++b) {
+            Body& s = bodies_[b];
+            if (s.kind == Body::Kind::Rigid) {
+                const double* y = &world.state[s.index * rigid::kStateSize];
+                s.v_free = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
+                s.w_free = s.inv_I * Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+            } else {
+                const SolverParticles& p = world.particles[std::size_t(s.soft)];
+                s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
+                s.w_free = {};
+            }
+            s.v = s.v_free;
+            s.w = s.w_free;
+        }
+        restitute(true);
+        store(world, false);
+    }
+    // The record: what each point took over the tick, and what the next tick starts from.
+    for (const Manifold& m : manifolds_) {
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            const Point& p = points_[k];
+            RigidContact& c = contacts[p.contact];
+            c.approach_speed = -p.v_n0;
+            c.normal_impulse = p.total_normal + p.total_bounce;
+            c.bounce_impulse = p.total_bounce;
+            c.tangent_impulse[0] = p.total_tangent[0];
+            c.tangent_impulse[1] = p.total_tangent[1];
+            c.warm_normal = p.normal_impulse / h_;
+            c.warm_tangent[0] = p.tangent_impulse[0] / h_;
+            c.warm_tangent[1] = p.tangent_impulse[1] / h_;
+            c.depth = -p.s;
         }
     }
 }

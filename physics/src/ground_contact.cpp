@@ -9,7 +9,6 @@ namespace {
 
 constexpr float kContactTolerance = 1e-5f;  // m: a particle this close to the ground touches it
 constexpr float kStaticSpeed = 1e-4f;       // m/s: below this tangential speed, friction is static
-constexpr double kRigidMargin = 1e-4;       // m: a rigid body's point this close above the ground touches it
 
 }  // namespace
 
@@ -86,11 +85,10 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
     return h * (length(start.v) + length(start.omega) * body.bounding_radius) + h * h * g + 1e-3;
 }
 
-void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const double* state,
-                           const Params& world, double h, std::vector<RigidContact>& out) {
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const Params& world, double h,
+                           std::vector<RigidContact>& out) {
     if (!world.ground || body.fixed) return;
     const RigidMotion m0 = rigid_motion(body, start);
-    const RigidMotion m = rigid_motion(body, state);
     const Vec3d n{0.0, 0.0, 1.0};
     const double ground = world.ground_height;
     const double margin = speculative_margin(body, m0, h, length(Vec3d(world.gravity)));
@@ -100,33 +98,24 @@ void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const dou
     c.normal = n;
     c.restitution = body.restitution.value_or(world.restitution);
     c.friction = body.friction.value_or(world.dynamic_friction);
-    // `local`: the point in body axes, as the step began; `anchor`: the same material point for
-    // the position pass, where the step took it.
-    const auto add = [&](const Vec3d& local, const Vec3d& anchor, std::uint32_t feature, std::vector<RigidContact>& into) {
+    // `local`: the point in body axes.
+    const auto add = [&](const Vec3d& local, std::uint32_t feature, std::vector<RigidContact>& into) {
         const Vec3d p0 = m0.x + m0.R * local;
         if (p0.z - ground > margin) return;
-        const Vec3d p = m.x + m.R * anchor;
         c.feature = feature;
         c.point = p0;
         c.arm_a = p0 - m0.x;
         c.separation = p0.z - ground;
-        c.depth = ground - p.z;
-        c.local_a = anchor;
-        c.local_b = {p.x, p.y, ground};
+        c.depth = -c.separation;
         into.push_back(c);
     };
     if (body.shape == ShapeKind::Sphere) {
-        // Its lowest point, R^T (-r n) in body axes: as the step began, and where it took it.
-        add(m0.R.transposed() * (n * -body.radius), m.R.transposed() * (n * -body.radius), 0, out);
+        add(m0.R.transposed() * (n * -body.radius), 0, out);  // its lowest point, R^T (-r n) in body axes
         return;
     }
     std::vector<RigidContact> manifold;
-    for (std::size_t v = 0; v < body.hull->vertices.size(); ++v) {
-        add(body.hull->vertices[v], body.hull->vertices[v], std::uint32_t(v), manifold);
-    }
-    for (RigidContact& point : manifold) point.depth = -point.separation;  // for the choice of the deepest
+    for (std::size_t v = 0; v < body.hull->vertices.size(); ++v) add(body.hull->vertices[v], std::uint32_t(v), manifold);
     reduce_manifold(manifold, n);
-    for (RigidContact& point : manifold) point.depth = ground - (m.x + m.R * point.local_a).z;
     out.insert(out.end(), manifold.begin(), manifold.end());
 }
 

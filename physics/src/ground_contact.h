@@ -27,19 +27,18 @@ void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params&
 // velocity stay consistent (x_n - x_{n-1} = v h).
 void resolve_ground_contacts(SoftBody& body, const Params& world, float h);
 
-// How far a rigid body's points can move in a step of h, from where it was at the start:
+// How far a rigid body's points can move in a step (or tick) of h, from where it was at the start:
 // h (|v| + |w| R) for its motion then, h^2 |g| for gravity's, and a millimetre. A contact is
 // made for points closer than that, before they touch (a speculative contact), so that the
 // solver can stop them at the surface, however fast they come.
 double speculative_margin(const RigidBody& body, const RigidMotion& start, double h, double g);
 
 // A rigid body against the ground: the points of its shape within the speculative margin of
-// it where the step began (a sphere's lowest point; the vertices of its hull, at most four kept:
-// the deepest, and those that span the largest area with it), with their gap then and their
-// depth where the step took the body. The ground is static (1/m = 0, J^-1 = 0); the contacts
-// go to the solver (contact_solver.h), with the body's restitution and friction or the world's.
-// `start`: the body's state when the step began; `state`: where the step took it.
-void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const double* state,
-                           const Params& world, double h, std::vector<RigidContact>& out);
+// it where the tick began (a sphere's lowest point; the vertices of its hull, at most four kept:
+// the deepest, and those that span the largest area with it), with their gap then. The ground is
+// static (1/m = 0, J^-1 = 0); the contacts go to the solver (contact_solver.h), with the body's
+// restitution and friction or the world's. `start`: the body's state as the tick began; `h`: the tick.
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const Params& world, double h,
+                           std::vector<RigidContact>& out);
 
 }  // namespace softbody

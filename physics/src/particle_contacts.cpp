@@ -15,24 +15,28 @@ void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<
                              std::span<const double> start, const Params& world, double h, std::vector<RigidContact>& out) {
     const std::size_t n = body.particle_count();
     if (n == 0 || bodies.empty()) return;
-    const Vec3Array &x_start = body.x_step_start, &v_start = body.v_step_start;
-    // How far any particle moved this step, and the box that holds the body's start with it.
-    float reach = 0.0f;
-    Vec3 lo = x_start[0], hi = x_start[0];
+    const double g = length(Vec3d(world.gravity));
+    // How far each particle can go in the tick: at its speed, with gravity, twice what its
+    // last tick's forces added to the way it went (x - x_prev - v h, about a h^2 / 2), and a
+    // millimetre; the box that holds the body with it.
+    std::vector<double> reach(n);
+    double most = 0.0;
+    Vec3 lo = body.x[0], hi = body.x[0];
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 p = x_start[i];
-        reach = std::max(reach, length(body.x[i] - p));
+        const Vec3 p = body.x[i];
+        const double pushed = double(length(p - body.x_tick_prev[i] - body.v[i] * float(h)));
+        reach[i] = h * double(length(body.v[i])) + 2.0 * pushed + h * h * g + 1e-3;
+        most = std::max(most, reach[i]);
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
-    const double g = length(Vec3d(world.gravity));
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const RigidBody& rigid = bodies[b];
         const double* s = &start[b * rigid::kStateSize];
         const RigidMotion m = rigid_motion(rigid, s);
-        const double margin = rigid.fixed ? 1e-3 : speculative_margin(rigid, m, h, g);
+        const double margin = rigid.fixed ? 0.0 : speculative_margin(rigid, m, h, g);
         // Broad phase: the body's box against the rigid body's bounding sphere, grown by both reaches.
-        const double r = shapes[b].bounding_radius + margin + double(reach);
+        const double r = shapes[b].bounding_radius + margin + most;
         const Vec3d low(lo), high(hi);
         bool apart = false;
         for (int k = 0; k < 3; ++k) apart = apart || m.x[k] + r < low[k] || m.x[k] - r > high[k];
@@ -46,11 +50,10 @@ void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<
         const double mu_s = rigid.friction.value_or(world.static_friction);
         for (std::size_t i = 0; i < n; ++i) {
             if (rigid.fixed && body.inv_mass[i] == 0.0f) continue;  // nothing there can move
-            const Vec3d p(x_start[i]);
+            const Vec3d p(body.x[i]);
             if (dot(p - m.x, p - m.x) > r * r) continue;
-            // Each particle's own reach: how far it moved, and how far the body's surface can.
-            const double own = margin + double(length(body.x[i] - x_start[i]));
-            const std::optional<SurfacePoint> hit = point_contact(shapes[b], pose, p, own);
+            // Each particle's own reach, and how far the body's surface can come.
+            const std::optional<SurfacePoint> hit = point_contact(shapes[b], pose, p, margin + reach[i]);
             if (!hit) continue;
             c.a = std::uint32_t(i);
             c.feature = 0;
@@ -60,20 +63,12 @@ void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<
             c.depth = hit->depth;
             c.arm_a = {};
             c.arm_b = hit->point - m.x;
-            c.local_a = {};
-            c.local_b = m.R.transposed() * c.arm_b;
-            const Vec3d v_rel = Vec3d(v_start[i]) - (m.v + cross(m.omega, c.arm_b));
+            const Vec3d v_rel = Vec3d(body.v[i]) - (m.v + cross(m.omega, c.arm_b));
             const Vec3d v_t = v_rel - c.normal * dot(v_rel, c.normal);
             c.static_friction = length(v_t) < kStaticSpeed ? mu_s : c.friction;
             out.push_back(c);
         }
     }
-}
-
-double particle_separation(const RigidContact& c, const Vec3Array& x, std::span<const RigidBody> bodies,
-                           std::span<const double> state) {
-    const RigidMotion m = rigid_motion(bodies[std::size_t(c.b)], &state[std::size_t(c.b) * rigid::kStateSize]);
-    return dot(Vec3d(x[c.a]) - (m.x + m.R * c.local_b), c.normal);
 }
 
 }  // namespace softbody

@@ -15,21 +15,17 @@
 
 namespace softbody {
 
-// Appends a contact for every particle of `body` (soft body number `soft`) that was within
-// reach of a rigid body's surface where the step began (body.x_step_start, `start`): within how
-// far the particle moved this step plus the rigid body's speculative margin (ground_contact.h).
-// A particle inside a shape goes out along the nearest surface's normal (point_contact).
+// Appends a contact for every particle of `body` (soft body number `soft`) within reach of a
+// rigid body's surface where the tick began (`start`; the particles where they are now): within
+// how far the particle can move in the tick h (its speed, gravity, what the forces of its last
+// tick (body.x_tick_prev to x) did, and a millimetre) plus the rigid body's speculative margin (ground_contact.h). A particle
+// inside a shape goes out along the nearest surface's normal (point_contact).
 // Friction is Eq. 24 and 25 with the world's mu_s and mu_d, unless the rigid body sets
 // `friction`, which then serves as both: the contact's static_friction is mu_s when the particle
-// was at rest on the surface as the step began (slower than 0.1 mm/s across it, as at the
+// was at rest on the surface as the tick began (slower than 0.1 mm/s across it, as at the
 // ground), mu_d when it was sliding. Restitution is the larger of the world's and the rigid
 // body's.
 void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                              std::span<const double> start, const Params& world, double h, std::vector<RigidContact>& out);
-
-// The gap along its normal between a particle and the rigid body's material point it touched,
-// where both are now (< 0: the particle is inside).
-double particle_separation(const RigidContact& c, const Vec3Array& x, std::span<const RigidBody> bodies,
-                           std::span<const double> state);
 
 }  // namespace softbody

@@ -47,24 +47,9 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
             c.depth = p.depth;
             c.arm_a = p.point - ma.x;
             c.arm_b = p.point - mb.x;
-            // Each body's own surface point, midway point -+ half the depth along the normal, in
-            // its own axes: the material points whose gap the position pass closes.
-            const Vec3d on_a = p.point - p.normal * (0.5 * p.depth), on_b = p.point + p.normal * (0.5 * p.depth);
-            c.local_a = ma.R.transposed() * (on_a - ma.x);
-            c.local_b = mb.R.transposed() * (on_b - mb.x);
             out.push_back(c);
         }
     }
-}
-
-double contact_separation(const RigidContact& c, std::span<const RigidBody> bodies, std::span<const double> state) {
-    const RigidMotion a = rigid_motion(bodies[c.a], &state[c.a * rigid::kStateSize]);
-    Vec3d p_b = c.local_b;  // the ground: a point of its plane
-    if (c.b >= 0) {
-        const RigidMotion b = rigid_motion(bodies[std::size_t(c.b)], &state[std::size_t(c.b) * rigid::kStateSize]);
-        p_b = b.x + b.R * c.local_b;
-    }
-    return dot(a.x + a.R * c.local_a - p_b, c.normal);
 }
 
 }  // namespace softbody

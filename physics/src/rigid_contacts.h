@@ -1,5 +1,5 @@
-// Internal to the physics library: the contacts between rigid bodies for one step, found where
-// the bodies were when the step began (broad phase, then narrow phase), as RigidContacts for the
+// Internal to the physics library: the contacts between rigid bodies for one tick, found where
+// the bodies were when the tick began (broad phase, then narrow phase), as RigidContacts for the
 // solver (contact_solver.h).
 #pragma once
 
@@ -18,7 +18,7 @@ namespace softbody {
 // (ground_contact.h), overlapping pairs (two fixed bodies skipped) tested by `collide` within
 // the sum of the two margins. Restitution is the larger of the two bodies' (as Box2D mixes it),
 // friction the geometric mean sqrt(mu_a mu_b); each defaults to the world's. `start`: the flat
-// state when the step began; `scratch` keeps its allocations from step to step.
+// state when the tick began, `h` the tick; `scratch` keeps its allocations from step to step.
 struct RigidContactScratch {
     std::vector<Aabb> boxes;
     std::vector<double> margins;
@@ -28,9 +28,5 @@ struct RigidContactScratch {
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                          std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
                          std::vector<RigidContact>& out);
-
-// The gap along its normal between the two material points of a contact, where the bodies are
-// now (< 0: overlapping): the ground's point is fixed in the world.
-double contact_separation(const RigidContact& c, std::span<const RigidBody> bodies, std::span<const double> state);
 
 }  // namespace softbody

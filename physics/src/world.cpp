@@ -45,7 +45,10 @@ WorldDef one_body(const Params& params, Mesh mesh) {
 }  // namespace
 
 World::World(WorldDef def, WorldOptions options)
-    : params_(def.params), rigid_contact_scratch_(std::make_unique<RigidContactScratch>()), reference_kernel_(options.reference_kernel) {
+    : params_(def.params),
+      rigid_contact_scratch_(std::make_unique<RigidContactScratch>()),
+      solver_(std::make_unique<ContactSolver>()),
+      reference_kernel_(options.reference_kernel) {
     validate(params_);
     pool_ = std::make_unique<ThreadPool>(std::max(1, options.threads));
     for (SoftBodyDef& d : def.soft_bodies) {
@@ -252,6 +255,7 @@ void World::update_substeps() {
         const int needed = stability().substeps_needed;
         substeps_ = std::max(params_.substeps, needed > 0 ? needed : 1000);
     }
+    tick_substeps_ = substeps_;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -363,16 +367,16 @@ void World::evaluate_forces(int stage, bool record_contacts) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// One step of h: forces, the integrator, contacts.
+// One step of h: forces, the integrator (the bodies' free motion), then the contacts' substep.
 // ---------------------------------------------------------------------------------------------
 void World::step(float h) {
     const double hd = h;
-    if (!rigid_.empty()) {
-        y_step_start_ = y_;
-        for (SoftBody& body : soft_) {
-            copy(body.x, body.x_step_start);
-            copy(body.v, body.v_step_start);
-        }
+    const bool contacts = !contacts_.empty();
+    // Where the substep begins: symplectic Euler's positions move on from here, and each
+    // contact's approach is measured from here.
+    if (!rigid_.empty()) y_step_start_ = y_;
+    if (contacts) {
+        for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
     switch (params_.integrator) {
         case Integrator::Verlet:
@@ -385,9 +389,11 @@ void World::step(float h) {
                 if (params_.integrator == Integrator::Verlet) verlet_update(body, h);
                 else symplectic_euler_update(body, h);
             }
-            // Rigid bodies: the momenta now; the positions follow from them once the contacts
-            // have had their say (solve_rigid_contacts). Verlet is this for a rigid body.
-            if (!rigid_.empty()) flat_euler_momenta(y_, k_[0], hd);
+            // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
+            if (!rigid_.empty()) {
+                flat_euler_momenta(y_, k_[0], hd);
+                symplectic_positions(rigid_, y_step_start_, y_, hd);
+            }
             break;
         case Integrator::ExplicitEuler:
             evaluate_forces(0, true);
@@ -408,87 +414,75 @@ void World::step(float h) {
             break;
     }
     for (SoftBody& body : soft_) hold_pins(body);
-    // The rigid bodies' contacts before the ground's for particles: the ground moves for no one,
+    // The contacts act on the velocities the integrator left, and move the positions on with
+    // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
-    if (!rigid_.empty()) solve_rigid_contacts(h);
+    if (contacts) solver_->substep(contacts_, contact_world());
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
-// Eq. 37 and 38 at every contact of the step, with the ground a static body. Contacts are
-// found where the bodies were when the step began, each point within how far its body can
-// move in the step (a speculative contact), as Box2D finds them. For symplectic Euler and
-// Verlet the impulses then act on the new momenta before the positions follow from them
-// (velocities, then positions, as Box2D orders it): a resting body does not sink a step's fall
-// into the ground each tick, and a contact still apart closes its gap this step and no more, so
-// fast bodies do not pass through thin ones. Explicit Euler and RK4 have moved the bodies with
-// the old velocities already: only the points that end the step in contact take impulses,
-// which stop their approach. What penetration is left, the solver's position pass removes.
-void World::solve_rigid_contacts(float h) {
-    std::swap(previous_contacts_, contacts_);
-    contacts_.clear();
-    const bool speculative = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        const std::size_t at = b * rigid::kStateSize;
-        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_step_start_[at], &y_[at], params_, h, contacts_);
-    }
-    rigid_body_contacts(rigid_, shapes_, y_step_start_, params_, h, *rigid_contact_scratch_, contacts_);
-    for (std::size_t b = 0; b < soft_.size(); ++b) {
-        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_step_start_, params_, h,
-                                contacts_);
-    }
-    // Where the step took each contact's two points (the ground's: fixed).
-    const auto separation = [&](const RigidContact& c) {
-        return c.soft >= 0 ? particle_separation(c, soft_[std::size_t(c.soft)].x, rigid_, y_) : contact_separation(c, rigid_, y_);
-    };
-    for (RigidContact& c : contacts_) c.depth = -separation(c);
-    if (!speculative) std::erase_if(contacts_, [](const RigidContact& c) { return c.depth < 0.0; });
-    if (contacts_.empty()) {
-        if (speculative) symplectic_positions(rigid_, y_step_start_, y_, h);
-        return;
-    }
-    std::vector<SolverBody> bodies(rigid_.size());
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        bodies[b] = {&y_[b * rigid::kStateSize], rigid_[b].inv_mass, rigid_[b].J_body_inv};
-    }
-    std::vector<SolverParticles> particles(soft_.size());
+// What the contact solver sees of the world (contact_solver.h).
+ContactWorld World::contact_world() {
+    solver_particles_.resize(soft_.size());
+    solver_particle_v_.resize(soft_.size());
+    const bool verlet = params_.integrator == Integrator::Verlet;
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         SoftBody& body = soft_[b];
-        particles[b] = {body.x.x.data(), body.x.y.data(), body.x.z.data(), body.v.x.data(),
-                        body.v.y.data(), body.v.z.data(), body.inv_mass.data()};
-    }
-    SolverSettings settings;
-    settings.h = h;
-    settings.speculative = speculative;
-    // As for particles at the ground: impacts slower than two steps of gravity are resting contact.
-    settings.bounce_speed = 2.0 * std::abs(double(params_.gravity.z)) * double(h);
-    solve_contact_velocities(contacts_, previous_contacts_, bodies, particles, settings);
-    if (speculative) {
-        symplectic_positions(rigid_, y_step_start_, y_, h);
-        // A particle in contact moves the step at its solved velocity, as a rigid body does.
-        for (const RigidContact& c : contacts_) {
-            if (c.soft < 0) continue;
-            SoftBody& body = soft_[std::size_t(c.soft)];
-            body.x.set(c.a, body.x_step_start[c.a] + body.v[c.a] * h);
+        SolverParticles& p = solver_particles_[b];
+        p = {body.x.x.data(), body.x.y.data(), body.x.z.data(), body.v.x.data(), body.v.y.data(), body.v.z.data(),
+             body.inv_mass.data()};
+        if (verlet) {
+            p.verlet_x = body.verlet_step.x.data();
+            p.verlet_y = body.verlet_step.y.data();
+            p.verlet_z = body.verlet_step.z.data();
         }
-        apply_bounce_shifts(contacts_, bodies, particles);
-        // Where the positions took each contact's points: the position pass starts from there.
-        for (RigidContact& c : contacts_) c.depth = -separation(c);
+        solver_particle_v_[b] = &body.v_step_start;
     }
-    solve_contact_positions(contacts_, bodies, particles, settings);
-    // Verlet carries its step x_n - x_{n-1}: a particle the contacts moved takes v h, as at the ground.
-    if (params_.integrator == Integrator::Verlet) {
-        for (const RigidContact& c : contacts_) {
-            if (c.soft >= 0) soft_[std::size_t(c.soft)].verlet_step.set(c.a, soft_[std::size_t(c.soft)].v[c.a] * h);
-        }
+    return {rigid_, y_, y_tick_prev_, y_step_start_, solver_particles_, solver_particle_v_};
+}
+
+// Every contact of the tick, found where the bodies are as it begins, each point within how far
+// its bodies can move in the tick (a speculative contact, as Box2D finds them): rigid bodies
+// with the ground and with one another, soft bodies' particles with rigid bodies. Then the
+// solver prepares them (anchors, masses, last tick's impulses).
+void World::begin_contacts() {
+    std::swap(previous_contacts_, contacts_);
+    contacts_.clear();
+    const double dt = params_.dt;
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, dt, contacts_);
     }
+    rigid_body_contacts(rigid_, shapes_, y_, params_, dt, *rigid_contact_scratch_, contacts_);
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, dt, contacts_);
+    }
+    for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
+    if (contacts_.empty()) return;
+    tick_substeps_ = std::max(substeps_, kContactSubsteps);
+    ContactSettings settings;
+    settings.dt = dt;
+    settings.substeps = tick_substeps_;
+    settings.gravity = Vec3d(params_.gravity);
+    // As for particles at the ground: impacts slower than two ticks' worth of gravity are
+    // resting contact.
+    settings.bounce_speed = 2.0 * length(Vec3d(params_.gravity)) * dt;
+    solver_->prepare(contacts_, previous_contacts_, contact_world(), settings);
 }
 
 // ---------------------------------------------------------------------------------------------
-// The tick: substeps, renormalisation, then the checks; a tick that diverged is taken back.
+// The tick: contacts found, substeps, renormalisation, then the checks; a tick that diverged is
+// taken back.
 // ---------------------------------------------------------------------------------------------
 void World::tick() {
     if (status_ != Status::Ok) return;
     if (energy_baseline_stale_ && !grab_) take_energy_baseline();
+    y_tick_prev_ = y_;
+    y_good_ = y_;
+    // A tick with contacts is solved in at least kContactSubsteps (their soft step,
+    // contact_solver.h); one without runs the substeps its springs need. Found before the
+    // particles' last tick is forgotten: how far they went then says how far they may go now.
+    tick_substeps_ = substeps_;
+    if (!rigid_.empty()) begin_contacts();
     for (SoftBody& body : soft_) {
         copy(body.x, body.x_tick_prev);
         copy(body.x, body.x_good);
@@ -496,10 +490,13 @@ void World::tick() {
         copy(body.verlet_step, body.verlet_step_good);
         body.verlet_h_good = body.verlet_h;
     }
-    y_tick_prev_ = y_;
-    y_good_ = y_;
-    const float h = params_.dt / static_cast<float>(substeps_);
-    for (int s = 0; s < substeps_; ++s) step(h);
+    const float h = params_.dt / static_cast<float>(tick_substeps_);
+    for (int s = 0; s < tick_substeps_; ++s) step(h);
+    contact_energy_ = {};
+    if (!contacts_.empty()) {
+        solver_->finish(contacts_, contact_world());
+        contact_energy_ = solver_->energy();
+    }
     ++ticks_;
     // Listing 9: every few ticks, bring each quaternion back to unit length.
     if (params_.renormalize_every > 0 && ticks_ % std::uint64_t(params_.renormalize_every) == 0) {

@@ -13,24 +13,25 @@ struct RigidContact {
     std::uint32_t a = 0;         // the rigid body the normal points toward (or the particle, see `soft`)
     std::int32_t b = -1;         // the other rigid body, or -1 for the ground (static: 1/m = 0, J^-1 = 0)
     std::int32_t soft = -1;      // >= 0: side a is particle a of this soft body (no rotation term)
-    std::uint32_t feature = 0;   // which vertex or edge made it, to carry its impulses to the next step
-    Vec3d point;                 // world, m, where the step began
+    std::uint32_t feature = 0;   // which vertex or edge made it, to carry its impulses to the next tick
+    Vec3d point;                 // world, m, where the tick began
     Vec3d arm_a, arm_b;          // from each body's centre of mass to the point, world axes (the r of Eq. 38)
     Vec3d normal;                // unit, out of b toward a
-    double depth = 0.0;          // penetration along the normal where the step took the bodies, m (> 0: overlapping)
-    double separation = 0.0;     // the same points' gap along the normal at the step's start, m (< 0: overlapping)
-    Vec3d local_a, local_b;      // the point in each body's axes, from its centre of mass
+    double separation = 0.0;     // the points' gap along the normal as the tick began, m (< 0: overlapping)
+    double depth = 0.0;          // penetration where the tick left the bodies, m (> 0: overlapping)
     double restitution = 0.0;    // e
     double friction = 0.0;       // mu; for a particle, mu_d of Eq. 25 while it slides
     double static_friction = 0.0;  // a particle's stick limit: mu_s (Eq. 24) when it was at rest
-                                   // as the step began, mu_d when it was already sliding
+                                   // as the tick began, mu_d when it was already sliding
 
-    // What the solver found (Eq. 37, 38): v_rel . n before, the accumulated impulses.
-    double approach_speed = 0.0; // -v_rel . n before the impulses (> 0: closing), m/s
-    double normal_impulse = 0.0; // lambda, N s
-    double tangent_impulse[2] = {0.0, 0.0};
-    double resting_impulse = 0.0;  // lambda before the restitution pass: what the next step starts from
-    double bounce_shift = 0.0;   // m: how far a bounce from a gap moves the bodies back (see contact_solver.h)
+    // What the solver did (Eq. 37, 38), over the whole tick.
+    double approach_speed = 0.0; // -v_rel . n as the tick began (> 0: closing), m/s
+    double normal_impulse = 0.0; // lambda, every substep's and the bounce's, N s
+    double tangent_impulse[2] = {0.0, 0.0};  // friction's, along contact_tangents(normal)
+    double bounce_impulse = 0.0; // restitution's part of normal_impulse, N s
+    // The impulses of the tick's last substep, per second (N): the next tick starts from them.
+    double warm_normal = 0.0;
+    double warm_tangent[2] = {0.0, 0.0};
 };
 
 // The whole impulse a contact's solver applied on side a, normal and tangential (friction)

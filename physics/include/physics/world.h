@@ -30,8 +30,20 @@
 namespace softbody {
 
 struct RigidContactScratch;  // rigid_contacts.h
+class ContactSolver;         // contact_solver.h
+struct ContactWorld;
+struct SolverParticles;
 
 enum class Status { Ok, Diverged };
+
+// The least substeps a tick with contacts runs (their soft step, contact_solver.h).
+inline constexpr int kContactSubsteps = 4;
+
+// The energy contacts took (< 0) or gave over a tick, J, and how much of it was restitution's.
+struct ContactEnergy {
+    double total = 0.0;
+    double restitution = 0.0;
+};
 
 struct Energy {
     double kinetic = 0.0;      // sum 1/2 m |v|^2, plus each rigid body's 1/2 |P|^2 / m + 1/2 L . w
@@ -202,7 +214,12 @@ public:
     Vec3 center_of_mass() const;  // of the first soft body
     float min_z() const;          // of the first soft body
     Stability stability() const;  // the least stable soft body's
-    int substeps_in_use() const { return substeps_; }
+    // Substeps of the last tick: the springs' need (stability), or at least kContactSubsteps in a
+    // tick with contacts.
+    int substeps_in_use() const { return tick_substeps_; }
+    // What the contacts did to the kinetic energy in the last tick (< 0: took it), J, and
+    // restitution's share of it (contact_solver.h says how it is measured).
+    const ContactEnergy& contact_energy() const { return contact_energy_; }
     std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v, and every rigid state
 
 private:
@@ -210,10 +227,11 @@ private:
     void resolve_links(const std::vector<SpringDef>& springs);
     void update_substeps();
     void step(float h);
+    void begin_contacts();
+    ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
     double link_inverse_mass(const Link& link) const;
-    void solve_rigid_contacts(float h);
     void check_divergence();
     void take_energy_baseline();
     double kinetic_plus_gravity() const;
@@ -232,11 +250,16 @@ private:
     std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
     std::vector<RigidContact> contacts_, previous_contacts_;
     std::unique_ptr<RigidContactScratch> rigid_contact_scratch_;  // the broad phase's buffers
+    std::unique_ptr<ContactSolver> solver_;
+    std::vector<SolverParticles> solver_particles_;
+    std::vector<const Vec3Array*> solver_particle_v_;
+    ContactEnergy contact_energy_;
     std::unique_ptr<ThreadPool> pool_;
     bool reference_kernel_;
 
     std::uint64_t ticks_ = 0;
-    int substeps_ = 1;
+    int substeps_ = 1;       // what the springs need (update_substeps)
+    int tick_substeps_ = 1;  // what the last tick ran
     Status status_ = Status::Ok;
     std::string divergence_;
     std::optional<Grab> grab_;
