@@ -1,8 +1,8 @@
 #include "contact_solver.h"
 
 #include <algorithm>
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <numeric>
 #include <tuple>
 
@@ -13,18 +13,11 @@ namespace {
 using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
-// A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,
-// written for one implicit step of h. bias_rate turns a depth into a velocity; mass_scale and
-// impulse_scale soften the impulse so the push apart is that spring's, whatever the masses.
-struct Softness {
-    double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-};
-Softness make_soft(double hertz, double zeta, double h) {
-    if (hertz <= 0.0) return {};
-    const double omega = 2.0 * 3.14159265358979323846 * hertz;
-    const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
-    return {omega / a1, a2 * a3, a3};
-}
+// A point closer than this (m) touches: pushed apart softly where it overlaps (solve()).
+constexpr double kSpeculative = 1e-6;
+
+// Two points of a pair of bodies, a tick apart, this close are the same contact (m).
+constexpr double kSamePoint = 5e-3;
 
 Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 
@@ -33,6 +26,129 @@ Quat turned(const Quat& q, const Vec3d& theta) {
     const double angle = length(theta);
     if (!(angle > 0.0)) return q;
     return Quat::from_axis_angle(theta / angle, angle) * q;
+}
+
+// The inverse of an n x n matrix (n <= 4) by Gauss-Jordan elimination with partial pivoting;
+// false when a pivot vanishes.
+bool invert(int n, const double (&A)[4][4], double (&inverse)[4][4]) {
+    double M[4][8];
+    for (int r = 0; r < n; ++r) {
+        for (int c = 0; c < n; ++c) {
+            M[r][c] = A[r][c];
+            M[r][n + c] = r == c ? 1.0 : 0.0;
+        }
+    }
+    for (int c = 0; c < n; ++c) {
+        int pivot = c;
+        for (int r = c + 1; r < n; ++r) {
+            if (std::abs(M[r][c]) > std::abs(M[pivot][c])) pivot = r;
+        }
+        if (!(std::abs(M[pivot][c]) > 0.0)) return false;
+        if (pivot != c) {
+            for (int k = 0; k < 2 * n; ++k) std::swap(M[c][k], M[pivot][k]);
+        }
+        const double p = 1.0 / M[c][c];
+        for (int k = 0; k < 2 * n; ++k) M[c][k] *= p;
+        for (int r = 0; r < n; ++r) {
+            if (r == c || M[r][c] == 0.0) continue;
+            const double f = M[r][c];
+            for (int k = 0; k < 2 * n; ++k) M[r][k] -= f * M[c][k];
+        }
+    }
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) inverse[r][c] = M[r][n + c];
+    return true;
+}
+
+// Solves K_SS x_S = b_S for the points in `set` (at most four), with 1e-9 of the diagonal
+// added when there are two or more (three collinear corners leave it singular). False when
+// singular all the same.
+bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+    int index[4], m = 0;
+    for (int i = 0; i < n; ++i) {
+        if (set & (1u << i)) index[m++] = i;
+    }
+    double A[4][4], A_inv[4][4];
+    for (int r = 0; r < m; ++r) {
+        for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
+        if (m > 1) A[r][r] *= 1.0 + 1e-9;
+    }
+    if (!invert(m, A, A_inv)) return false;
+    for (int i = 0; i < n; ++i) x[i] = 0.0;
+    for (int r = 0; r < m; ++r) {
+        double sum = 0.0;
+        for (int c = 0; c < m; ++c) sum += A_inv[r][c] * b[index[c]];
+        x[index[r]] = sum;
+    }
+    return true;
+}
+
+// The normal impulses x >= 0 of a manifold's n <= 4 points acting together. K is their
+// coupling; (K x)_i - b_i is point i's normal velocity above its target with impulses x, and it
+// must be zero where the point pushes (x_i > 0) and may be more where it does not (x_i = 0): a
+// linear complementarity problem, solved exactly by trying the sets of pushing points, all of
+// them first (with `K_solve`, prepared once a tick), then smaller sets, the first whose
+// impulses all push and whose other points do not close. Four corners on a plane leave K
+// singular (three would hold the face: statically indeterminate): of the answers, the one with
+// the least impulses is taken (b's part along the null direction z removed, and K_solve's z
+// filled in), which shares the load evenly and changes smoothly as the bodies move.
+void solve_block(const SolverManifold& m, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
+                 bool all_points) {
+    const auto fits = [&](unsigned set, const double (&y)[4]) {
+        for (int i = 0; i < n; ++i) {
+            if (set & (1u << i)) {
+                if (y[i] < 0.0) return false;
+            } else {
+                double w = -b[i];
+                for (int j = 0; j < n; ++j) w += K[i][j] * y[j];
+                if (w < -1e-9 * (std::abs(b[i]) + 1e-9)) return false;
+            }
+        }
+        return true;
+    };
+    const unsigned full = (1u << n) - 1u;
+    if (all_points) {
+        double c[4] = {b[0], b[1], b[2], b[3]};
+        if (m.singular) {
+            double along = 0.0;
+            for (int i = 0; i < n; ++i) along += c[i] * m.z[i];
+            for (int i = 0; i < n; ++i) c[i] -= along * m.z[i];
+        }
+        double y[4];
+        for (int r = 0; r < n; ++r) {
+            double sum = 0.0;
+            for (int k = 0; k < n; ++k) sum += m.K_solve[r][k] * c[k];
+            y[r] = sum;
+        }
+        // Rounding at the edge of the set: an impulse a hair below zero is zero.
+        double largest = 0.0;
+        for (int i = 0; i < n; ++i) largest = std::max(largest, y[i]);
+        bool all_push = true;
+        for (int i = 0; i < n; ++i) all_push = all_push && y[i] >= -1e-12 * largest;
+        if (all_push) {
+            for (int i = 0; i < n; ++i) x[i] = std::max(y[i], 0.0);
+            return;
+        }
+    }
+    // No point pushes (all come apart): the commonest other answer.
+    bool apart = true;
+    for (int i = 0; i < n; ++i) apart = apart && b[i] <= 0.0;
+    if (apart) {
+        for (int i = 0; i < n; ++i) x[i] = 0.0;
+        return;
+    }
+    // Smaller sets, largest first (the full set again when it was not tried above).
+    for (int size = all_points ? n - 1 : n; size >= 1; --size) {
+        for (unsigned set = full; set > 0; --set) {
+            if (std::popcount(set) != size) continue;
+            double y[4];
+            if (solve_set(n, set, K, b, y) && fits(set, y)) {
+                for (int i = 0; i < n; ++i) x[i] = y[i];
+                return;
+            }
+        }
+    }
+    for (int i = 0; i < n; ++i) x[i] = 0.0;  // none: every point lets go
 }
 
 }  // namespace
@@ -55,7 +171,7 @@ double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& 
 }
 
 // ---------------------------------------------------------------------------------------------
-// Prepare: bodies, manifolds, anchors, masses, warm starts, islands.
+// Prepare: bodies, manifolds, anchors, Jacobians, couplings, warm starts, islands.
 // ---------------------------------------------------------------------------------------------
 void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vector<RigidContact>& previous,
                             const ContactWorld& world, const ContactSettings& settings) {
@@ -83,7 +199,10 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
             s.x0 = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q0 = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
-            const Mat3 R = s.q0.to_matrix();  // as Listing 9 turns q into R: the world's J_inv (Eq. 32)
+            // Eq. 32 with q made unit first (between renormalisations |q| drifts under explicit
+            // Euler and RK4), so that I and inv_I are each other's inverse: the impulses' L
+            // (I dw) is then exactly r x j.
+            const Mat3 R = rotation_of(s.q0);
             s.inv_I = R * body.J_body_inv * R.transposed();
             s.I = R * body.J_body * R.transposed();
             at = std::int32_t(bodies_.size());
@@ -109,16 +228,41 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         return std::uint32_t(map[i]);
     };
 
-    // Last tick's contacts by key, to find each persisting one in log time.
+    // Each contact's point of the last tick, to start from its impulses (warm starting): the
+    // one with the same features; failing that (a face exactly over another's edge is clipped
+    // into points whose features flip with rounding), the nearest of the same two bodies
+    // within kSamePoint that no other took. Sorted by key, in log time.
     std::vector<std::uint32_t> last(previous.size());
     std::iota(last.begin(), last.end(), 0u);
     std::sort(last.begin(), last.end(), [&](std::uint32_t x, std::uint32_t y) { return key_of(previous[x]) < key_of(previous[y]); });
-    const auto warm = [&](const RigidContact& c) -> const RigidContact* {
-        const auto found = std::lower_bound(last.begin(), last.end(), key_of(c), [&](std::uint32_t k, const Key& key) {
-            return key_of(previous[k]) < key;
-        });
-        return found != last.end() && key_of(previous[*found]) == key_of(c) ? &previous[*found] : nullptr;
+    std::vector<char> taken(previous.size(), 0);
+    const auto lower = [&](const Key& key) {
+        return std::lower_bound(last.begin(), last.end(), key, [&](std::uint32_t k, const Key& want) { return key_of(previous[k]) < want; });
     };
+    std::vector<std::int64_t> match(contacts.size(), -1);
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const auto found = lower(key_of(contacts[k]));
+        if (found != last.end() && key_of(previous[*found]) == key_of(contacts[k]) && !taken[*found]) {
+            match[k] = *found;
+            taken[*found] = 1;
+        }
+    }
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const RigidContact& c = contacts[k];
+        if (match[k] >= 0 || c.soft >= 0) continue;
+        double best = kSamePoint * kSamePoint;
+        for (auto it = lower({c.soft, c.a, c.b, 0u}); it != last.end(); ++it) {
+            const RigidContact& p = previous[*it];
+            if (p.soft != c.soft || p.a != c.a || p.b != c.b) break;
+            const Vec3d d = p.point - c.point;
+            if (!taken[*it] && dot(d, d) < best) {
+                best = dot(d, d);
+                match[k] = *it;
+            }
+        }
+        if (match[k] >= 0) taken[std::size_t(match[k])] = 1;
+    }
+    const auto warm = [&](std::size_t k) -> const RigidContact* { return match[k] >= 0 ? &previous[std::size_t(match[k])] : nullptr; };
 
     points_.resize(contacts.size());
     for (std::size_t i = 0; i < contacts.size();) {
@@ -127,13 +271,12 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         m.a = first.soft >= 0 ? particle(first.soft, first.a) : rigid_body(first.a);
         m.b = rigid_body(first.b);
         m.n = first.normal;
-        contact_tangents(m.n, m.t1, m.t2);
+        contact_tangents(m.n, m.t[0], m.t[1]);
         // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
         // for one already sliding: particle_contacts.h); a rigid body has one mu.
         m.mu = first.soft >= 0 ? first.static_friction : first.friction;
         m.e = first.restitution;
         m.first = std::uint32_t(i);
-        m.stiff = m.b == 0;
         std::size_t end = i + 1;
         if (first.soft < 0) {
             while (end < contacts.size() && end < i + kMaxManifoldPoints && contacts[end].soft < 0 &&
@@ -143,6 +286,12 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         }
         m.count = std::uint32_t(end - i);
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        // The push apart is a spring (contact_hertz, twice that against the static world, as
+        // Box2D has it), stiffer where the point carries a load: a spring holding an impulse
+        // lambda a substep at effective mass m stands compressed by lambda / (m h omega^2), so
+        // omega is raised until that is at most stack_depth, up to a quarter of the substep
+        // rate (beyond it the substeps cannot follow the spring, and a pyramid shivers).
+        const double base = (m.b == 0 ? 2.0 : 1.0) * std::min(settings.contact_hertz, 0.25 / h_);
         for (std::size_t k = i; k < end; ++k) {
             const RigidContact& c = contacts[k];
             Point& p = points_[k];
@@ -150,28 +299,85 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             p.contact = std::uint32_t(k);
             p.r_a = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
             p.r_b = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
+            p.c_a = cross(p.r_a, m.n);
+            p.c_b = cross(p.r_b, m.n);
             p.s0 = p.s = c.separation;
-            const double k_n = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.n);
-            const double k_1 = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.t1);
-            const double k_2 = effective_inverse_mass(A.inv_mass, A.inv_I, p.r_a, B.inv_mass, B.inv_I, p.r_b, m.t2);
-            p.normal_mass = k_n > 0.0 ? 1.0 / k_n : 0.0;
-            p.tangent_mass[0] = k_1 > 0.0 ? 1.0 / k_1 : 0.0;
-            p.tangent_mass[1] = k_2 > 0.0 ? 1.0 / k_2 : 0.0;
-            if (const RigidContact* before = warm(c)) {
-                // Kept as a force (impulse per second): the substep may have changed since.
+            if (const RigidContact* before = warm(k)) {
+                // Kept as forces (impulses per second): the substep may have changed since.
                 p.normal_impulse = before->warm_normal * h_;
-                p.tangent_impulse[0] = before->warm_tangent[0] * h_;
-                p.tangent_impulse[1] = before->warm_tangent[1] * h_;
+                m.friction[0] += before->warm_tangent[0] * h_;
+                m.friction[1] += before->warm_tangent[1] * h_;
+                m.twist += before->warm_twist * h_;
             }
         }
-        // K_ij: point i's change of normal velocity per unit impulse at point j (Eq. 38's
-        // denominator when i = j).
-        for (std::size_t x = i; x < end; ++x) {
-            for (std::size_t y = i; y < end; ++y) {
-                const Point &p = points_[x], &q = points_[y];
-                m.K[x - i][y - i] = A.inv_mass + B.inv_mass + dot(cross(p.r_a, m.n), A.inv_I * cross(q.r_a, m.n)) +
-                                    dot(cross(p.r_b, m.n), B.inv_I * cross(q.r_b, m.n));
+        // Friction acts at the points' centre, and turns about n within their mean distance
+        // from it (solve()).
+        Vec3d centre;
+        for (std::size_t k = i; k < end; ++k) centre += contacts[k].point;
+        centre = centre / double(end - i);
+        for (std::size_t k = i; k < end; ++k) m.twist_radius += length(contacts[k].point - centre) / double(end - i);
+        const Vec3d r_a = A.kind == Body::Kind::Rigid ? centre - A.x0 : Vec3d{}, r_b = B.kind == Body::Kind::Rigid ? centre - B.x0 : Vec3d{};
+        for (int d = 0; d < 2; ++d) {
+            m.ft_a[d] = cross(r_a, m.t[d]);
+            m.ft_b[d] = cross(r_b, m.t[d]);
+            const double k_t = A.inv_mass + B.inv_mass + dot(m.ft_a[d], A.inv_I * m.ft_a[d]) + dot(m.ft_b[d], B.inv_I * m.ft_b[d]);
+            m.tangent_mass[d] = k_t > 0.0 ? 1.0 / k_t : 0.0;
+        }
+        const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
+        m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
+        // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
+        const int n = int(m.count);
+        for (int x = 0; x < n; ++x) {
+            for (int y = 0; y < n; ++y) {
+                const Point &p = points_[i + std::size_t(x)], &q = points_[i + std::size_t(y)];
+                m.K[x][y] = A.inv_mass + B.inv_mass + dot(p.c_a, A.inv_I * q.c_a) + dot(p.c_b, B.inv_I * q.c_b);
             }
+        }
+        for (int x = 0; x < n; ++x) {
+            Point& p = points_[i + std::size_t(x)];
+            p.normal_mass = m.K[x][x] > 0.0 ? 1.0 / m.K[x][x] : 0.0;
+            const double loaded = std::sqrt(p.normal_impulse * p.normal_mass / (h_ * settings.stack_depth)) /
+                                  (2.0 * 3.14159265358979323846);
+            p.softness = make_soft(std::clamp(loaded, base, std::max(base, 0.25 / h_)), settings.damping_ratio, h_);
+        }
+        // What solves K for all points at once. Four corners on a plane: their normal
+        // velocities depend on the bodies' motion only through v_n + (w_a - w_b) . (p x n), an
+        // affine function of the point in the plane, so K has rank 3 and z, the affine
+        // dependency of the four (sum z_i = 0, sum z_i q_i = 0 for their coordinates q_i in the
+        // plane), spans its null space.
+        double A4[4][4];
+        for (int x = 0; x < n; ++x)
+            for (int y = 0; y < n; ++y) A4[x][y] = m.K[x][y];
+        if (n == 4) {
+            double q[4][2];
+            for (int x = 0; x < 4; ++x) {
+                const Vec3d r = contacts[i + std::size_t(x)].point - contacts[i].point;
+                q[x][0] = dot(r, m.t[0]);
+                q[x][1] = dot(r, m.t[1]);
+            }
+            const auto det3 = [&](int a, int b, int c) {
+                return (q[b][0] - q[a][0]) * (q[c][1] - q[a][1]) - (q[c][0] - q[a][0]) * (q[b][1] - q[a][1]);
+            };
+            double z[4] = {det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)};
+            const double size = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + z[3] * z[3]);
+            double extent = 0.0;
+            for (int x = 0; x < 4; ++x) extent = std::max(extent, q[x][0] * q[x][0] + q[x][1] * q[x][1]);
+            if (size > 1e-9 * extent) {
+                m.singular = true;
+                const double fill = (m.K[0][0] + m.K[1][1] + m.K[2][2] + m.K[3][3]) / 4.0;
+                for (int x = 0; x < 4; ++x) {
+                    m.z[x] = z[x] / size;
+                }
+                for (int x = 0; x < 4; ++x)
+                    for (int y = 0; y < 4; ++y) A4[x][y] += fill * m.z[x] * m.z[y];
+            }
+        }
+        if (!m.singular && n > 1) {
+            for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
+        }
+        if (!invert(n, A4, m.K_solve)) {
+            for (int x = 0; x < n; ++x)
+                for (int y = 0; y < n; ++y) m.K_solve[x][y] = 0.0;
         }
         manifolds_.push_back(m);
         i = end;
@@ -206,24 +412,24 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     absorbed_.assign(islands, 0.0);
 
     // The approach as the tick began, for the record (the app's Last collision panel).
+    const auto velocity = [&](const Body& s, Vec3d& v, Vec3d& w) {
+        v = w = {};
+        if (s.kind == Body::Kind::Rigid) {
+            const double* y = &world.tick_start[s.index * rigid::kStateSize];
+            v = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
+            w = s.inv_I * Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+        } else if (s.kind == Body::Kind::Particle) {
+            const SolverParticles& q = world.particles[std::size_t(s.soft)];
+            v = {q.vx[s.index], q.vy[s.index], q.vz[s.index]};
+        }
+    };
     for (const Manifold& m : manifolds_) {
+        Vec3d v_a, w_a, v_b, w_b;
+        velocity(bodies_[m.a], v_a, w_a);
+        velocity(bodies_[m.b], v_b, w_b);
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            const RigidContact& c = contacts[k];
-            const auto velocity = [&](const Body& s, const Vec3d& r) -> Vec3d {
-                if (s.kind == Body::Kind::Rigid) {
-                    const double* y = &world.tick_start[s.index * rigid::kStateSize];
-                    const Vec3d P{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]}, L{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
-                    return P * s.inv_mass + cross(s.inv_I * L, r);
-                }
-                if (s.kind == Body::Kind::Particle) {
-                    const SolverParticles& q = world.particles[std::size_t(s.soft)];
-                    return {q.vx[s.index], q.vy[s.index], q.vz[s.index]};
-                }
-                return {};
-            };
-            p.v_n0 = dot(velocity(bodies_[m.a], p.r_a) - velocity(bodies_[m.b], p.r_b), m.n);
-            (void)c;
+            p.v_n0 = dot(v_a - v_b, m.n) + dot(w_a, p.c_a) - dot(w_b, p.c_b);
         }
     }
 }
@@ -262,21 +468,22 @@ void ContactSolver::load(const ContactWorld& world) {
 
 // Each point's separation where the bodies are: as the tick began, moved on by each body's
 // move and turn since (the anchors turn with their bodies).
-void ContactSolver::separations(const ContactWorld& world) {
-    (void)world;
+void ContactSolver::separations() {
     for (const Manifold& m : manifolds_) {
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            const Vec3d da = A.dp + A.turn * p.r_a - p.r_a, db = B.dp + B.turn * p.r_b - p.r_b;
-            p.s = p.s0 + dot(da - db, m.n);
+            Vec3d d = A.dp - B.dp;
+            if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a - p.r_a;
+            if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b - p.r_b;
+            p.s = p.s0 + dot(d, m.n);
         }
     }
 }
 
-// The work the contacts did on `bodies` since the integrator left them: the impulse m dv at
-// the substep's middle velocity, (v + v_free) / 2 - h g / 2, and the turn's change of
-// 1/2 w . J w. Zero for a body the contacts hold still under gravity.
+// The work the contacts did on a body since the integrator left it: the impulse m dv at the
+// substep's middle velocity, (v + v_free) / 2 - h g / 2, and the turn's change of 1/2 w . J w.
+// Zero for a body the contacts hold still under gravity.
 double ContactSolver::work(const Body& s) const {
     if (s.inv_mass == 0.0) return 0.0;
     const Vec3d dv = s.v - s.v_free;
@@ -285,111 +492,100 @@ double ContactSolver::work(const Body& s) const {
     return W;
 }
 
-namespace {
-
-
-// v + w x r of a solver body at anchor r.
-template <class B>
-inline Vec3d point_velocity(const B& s, const Vec3d& r) {
-    return s.v + cross(s.w, r);
-}
-
-// An impulse j at anchor r: P += j (Eq. 9, 10), L += r x j (Eq. 37), as velocities.
-template <class B>
-inline void apply(B& s, const Vec3d& j, const Vec3d& r) {
-    s.v += j * s.inv_mass;
-    s.w += s.inv_I * cross(r, j);
-}
-
-// The normal impulses x >= 0 of a manifold's n <= 4 points acting together. K is their
-// coupling: K_ij the change of point i's normal velocity per unit impulse at point j (Eq. 38's
-// denominator on the diagonal). Each point's normal velocity, (K x)_i - b_i above its target,
-// must be zero where it pushes (x_i > 0) and may be more where it does not (x_i = 0): a linear
-// complementarity problem, solved exactly by trying the sets of pushing points from all of them
-// down, the first whose impulses are all pushes and whose other points do not close. A face's
-// four corners on a plane leave K singular (three would hold it: statically indeterminate);
-// where a pivot vanishes, 1e-9 of each diagonal added picks the solution with the least
-// impulses, which shares the load evenly (elsewhere the answer is exact). Returns false if no set fits (rounding at the edge of two sets).
-bool solve_block(int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
-    constexpr double kRegular = 1e-9;
-    const int full = (1 << n) - 1;
-    // Sets by size, largest first: the points that pushed last time usually push now.
-    for (int size = n; size >= 0; --size) {
-        for (int set = full; set >= 0; --set) {
-            if (std::popcount(unsigned(set)) != size) continue;
-            int index[4], m = 0;
-            for (int i = 0; i < n; ++i) {
-                if (set & (1 << i)) index[m++] = i;
+// One pass over every manifold: its normal impulses together toward each point's target, then
+// friction point by point. `bias`: push overlaps apart (the solve), or not (the relax).
+void ContactSolver::solve(bool bias) {
+    const double inv_h = 1.0 / h_;
+    for (Manifold& m : manifolds_) {
+        if (!bias && m.bouncing) continue;  // it leaves: nothing to relax
+        Body &A = bodies_[m.a], &B = bodies_[m.b];
+        const int n = int(m.count);
+        // Each point's target normal velocity: minus the gap over h where it is still apart
+        // (close it in this substep, no more); where it touches or overlaps, what one step of a
+        // soft spring pushing it out would leave (never faster than push_speed), and in the
+        // relax 0. Touching means closer than kSpeculative: a face resting on another has its
+        // corners at gaps of +-1e-17 m, and treating each by the sign of its rounding would
+        // hold one corner stiffly and the next softly, and turn the face.
+        const double v_lin = dot(A.v - B.v, m.n);
+        double b[4], lambda[4];
+        for (int i = 0; i < n; ++i) {
+            const Point& p = points_[m.first + std::uint32_t(i)];
+            const double v_n = v_lin + dot(A.w, p.c_a) - dot(B.w, p.c_b);
+            double target = 0.0;
+            if (p.s > kSpeculative) {
+                target = -p.s * inv_h;
+            } else if (bias) {
+                const Softness& soft = p.softness;
+                const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
+                target = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
             }
-            // Gaussian elimination with partial pivoting on K_SS x_S = b_S; again with the
-            // diagonal raised when a pivot vanishes (K singular on this set).
-            double A[4][5];
-            bool singular = false;
-            for (int attempt = 0; attempt < 2; ++attempt) {
-                double largest = 0.0;
-                for (int r = 0; r < m; ++r) {
-                    for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
-                    if (attempt == 1) A[r][r] += kRegular * K[index[r]][index[r]];
-                    A[r][m] = b[index[r]];
-                    largest = std::max(largest, std::abs(A[r][r]));
-                }
-                singular = false;
-                for (int c = 0; c < m && !singular; ++c) {
-                    int pivot = c;
-                    for (int r = c + 1; r < m; ++r) {
-                        if (std::abs(A[r][c]) > std::abs(A[pivot][c])) pivot = r;
-                    }
-                    if (!(std::abs(A[pivot][c]) > 1e-11 * largest)) {
-                        singular = true;
-                        break;
-                    }
-                    if (pivot != c) {
-                        for (int k = c; k <= m; ++k) std::swap(A[c][k], A[pivot][k]);
-                    }
-                    for (int r = c + 1; r < m; ++r) {
-                        const double f = A[r][c] / A[c][c];
-                        for (int k = c; k <= m; ++k) A[r][k] -= f * A[c][k];
-                    }
-                }
-                if (!singular) break;
-            }
-            if (singular) continue;
-            double y[4] = {0.0, 0.0, 0.0, 0.0};
-            for (int r = m - 1; r >= 0; --r) {
-                double sum = A[r][m];
-                for (int k = r + 1; k < m; ++k) sum -= A[r][k] * y[k];
-                y[r] = sum / A[r][r];
-            }
-            bool fits = true;
-            double candidate[4] = {0.0, 0.0, 0.0, 0.0};
-            for (int r = 0; r < m; ++r) {
-                fits = fits && y[r] >= 0.0;
-                candidate[index[r]] = std::max(y[r], 0.0);
-            }
-            for (int i = 0; i < n && fits; ++i) {
-                if (set & (1 << i)) continue;
-                double w = -b[i];
-                for (int j = 0; j < n; ++j) w += K[i][j] * candidate[j];
-                fits = w >= -1e-12 * (std::abs(b[i]) + 1e-12);
-            }
-            if (!fits) continue;
-            for (int i = 0; i < n; ++i) x[i] = candidate[i];
-            return true;
+            b[i] = target - v_n;
+            for (int j = 0; j < n; ++j) b[i] += m.K[i][j] * points_[m.first + std::uint32_t(j)].normal_impulse;
+        }
+        solve_block(m, n, m.K, b, lambda, true);
+        double sum = 0.0;
+        Vec3d L_a, L_b;
+        for (int i = 0; i < n; ++i) {
+            Point& p = points_[m.first + std::uint32_t(i)];
+            const double applied = lambda[i] - p.normal_impulse;
+            p.normal_impulse = lambda[i];
+            p.total_normal += applied;
+            sum += applied;
+            L_a += p.c_a * applied;
+            L_b += p.c_b * applied;
+        }
+        // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
+        A.v += m.n * (sum * A.inv_mass);
+        A.w += A.inv_I * L_a;
+        B.v -= m.n * (sum * B.inv_mass);
+        B.w -= B.inv_I * L_b;
+        // Coulomb friction in impulse form, at the manifold's centre (all its points together,
+        // so that a face slides, sticks and lands alike at every corner): the tangential
+        // velocity there brought to zero while |lambda_t| <= mu lambda_n allows, lambda_n the
+        // manifold's; and its turn about n, within mu lambda_n times the points' mean distance
+        // from the centre. For a particle (one point) that is Eq. 24's min(mu_s |F_n|, |F_t|)
+        // when it was at rest and Eq. 25's mu_d |F_n| when sliding; one mu between rigid bodies.
+        if (m.mu <= 0.0) continue;
+        double normal = 0.0;
+        for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
+        const Vec3d dv = A.v - B.v;
+        double t[2];
+        for (int d = 0; d < 2; ++d) {
+            const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
+            t[d] = m.friction[d] - v_t * m.tangent_mass[d];
+        }
+        const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
+        if (size > limit) {
+            const double scale = size > 0.0 ? limit / size : 0.0;
+            t[0] *= scale;
+            t[1] *= scale;
+        }
+        const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
+        m.friction[0] = t[0];
+        m.friction[1] = t[1];
+        m.total_friction[0] += d0;
+        m.total_friction[1] += d1;
+        const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
+        A.v += j * A.inv_mass;
+        A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
+        B.v -= j * B.inv_mass;
+        B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+        if (m.twist_mass > 0.0) {
+            const double twist_limit = limit * m.twist_radius;
+            const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
+            const double d = turn - m.twist;
+            m.twist = turn;
+            A.w += A.inv_I * (m.n * d);
+            B.w -= B.inv_I * (m.n * d);
         }
     }
-    return false;
 }
 
-}  // namespace
-
-void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWorld& world) {
-    (void)contacts;
+void ContactSolver::substep(const ContactWorld& world) {
     if (manifolds_.empty()) return;
     const double h = h_, inv_h = 1.0 / h;
-    const Softness soft = make_soft(std::min(settings_.contact_hertz, 0.25 * inv_h), settings_.damping_ratio, h);
-    const Softness stiff = make_soft(2.0 * std::min(settings_.contact_hertz, 0.25 * inv_h), settings_.damping_ratio, h);
     load(world);
-    separations(world);
+    separations();
 
     // Which points bounce in this substep: one that met its surface in the last substep, or one
     // touching now and coming in faster than a resting contact does. The bounce leaves at -e
@@ -403,14 +599,17 @@ void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWo
             p.bounce = 0.0;
             p.bounce_impulse = 0.0;
             p.s_start = p.s;
-            if (m.e <= 0.0 && p.pending == 0.0) continue;
-            const double vn_start = dot((A.v_start + cross(A.w_start, p.r_a)) - (B.v_start + cross(B.w_start, p.r_b)), m.n);
-            const double vn_free = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
+            if (m.e <= 0.0) {
+                p.pending = 0.0;
+                continue;
+            }
+            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
             double speed = 0.0;
             if (p.pending > 0.0) speed = p.pending;
             else if (p.s <= settings_.touching && -vn_start > settings_.bounce_speed) speed = -vn_start;
             p.pending = 0.0;
-            if (speed > 0.0 && m.e > 0.0) {
+            if (speed > 0.0) {
                 p.bounce = speed;
                 p.bounce_target = m.e * speed + (vn_free - vn_start);
                 m.bouncing = bouncing = true;
@@ -421,89 +620,27 @@ void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWo
     // Warm start: the impulses that held the contacts in the last substep, again.
     for (Manifold& m : manifolds_) {
         Body &A = bodies_[m.a], &B = bodies_[m.b];
+        double sum = 0.0;
+        Vec3d L_a, L_b;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            const Vec3d j = m.n * p.normal_impulse + m.t1 * p.tangent_impulse[0] + m.t2 * p.tangent_impulse[1];
-            apply(A, j, p.r_a);
-            apply(B, -j, p.r_b);
+            sum += p.normal_impulse;
+            L_a += p.c_a * p.normal_impulse;
+            L_b += p.c_b * p.normal_impulse;
             p.total_normal += p.normal_impulse;
-            p.total_tangent[0] += p.tangent_impulse[0];
-            p.total_tangent[1] += p.tangent_impulse[1];
         }
+        const Vec3d j = m.n * sum + m.t[0] * m.friction[0] + m.t[1] * m.friction[1];
+        L_a += m.ft_a[0] * m.friction[0] + m.ft_a[1] * m.friction[1] + m.n * m.twist;
+        L_b += m.ft_b[0] * m.friction[0] + m.ft_b[1] * m.friction[1] + m.n * m.twist;
+        A.v += j * A.inv_mass;
+        A.w += A.inv_I * L_a;
+        B.v -= j * B.inv_mass;
+        B.w -= B.inv_I * L_b;
+        m.total_friction[0] += m.friction[0];
+        m.total_friction[1] += m.friction[1];
     }
 
-    // One pass of Eq. 38 toward each point's target, then friction; `bias`: push overlaps apart.
-    const auto solve = [&](bool bias) {
-        for (Manifold& m : manifolds_) {
-            if (!bias && m.bouncing) continue;  // it leaves: nothing to relax, and no turn from it
-            Body &A = bodies_[m.a], &B = bodies_[m.b];
-            const Softness& softness = m.stiff ? stiff : soft;
-            // Each point's target normal velocity: 0 where it touches; minus the gap over h where
-            // it is still apart (close it in this substep, no more); where it overlaps, what one
-            // step of a soft spring pushing it out would leave (never faster than push_speed).
-            const int n = int(m.count);
-            double b[4], lambda[4];
-            for (int i = 0; i < n; ++i) {
-                const Point& p = points_[m.first + std::uint32_t(i)];
-                const double v_n = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
-                double target = 0.0;
-                if (p.s > 0.0) {
-                    target = -p.s * inv_h;
-                } else if (bias) {
-                    const double push = std::min(-softness.bias_rate * p.s, settings_.push_speed);
-                    target = (1.0 - softness.mass_scale) * v_n + softness.mass_scale * push -
-                             softness.impulse_scale * p.normal_impulse / p.normal_mass;
-                }
-                // (K x)_i - b_i is point i's normal velocity above its target with impulses x.
-                b[i] = target - v_n;
-                for (int j = 0; j < n; ++j) b[i] += m.K[i][j] * points_[m.first + std::uint32_t(j)].normal_impulse;
-            }
-            if (!solve_block(n, m.K, b, lambda)) {
-                for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
-            }
-            Vec3d J_a, L_a, L_b;
-            for (int i = 0; i < n; ++i) {
-                Point& p = points_[m.first + std::uint32_t(i)];
-                const double applied = lambda[i] - p.normal_impulse;
-                p.normal_impulse = lambda[i];
-                p.total_normal += applied;
-                const Vec3d j = m.n * applied;
-                J_a += j;
-                L_a += cross(p.r_a, j);
-                L_b += cross(p.r_b, j);
-            }
-            A.v += J_a * A.inv_mass;
-            A.w += A.inv_I * L_a;
-            B.v -= J_a * B.inv_mass;
-            B.w -= B.inv_I * L_b;
-            // Coulomb friction in impulse form: the tangential velocity brought to zero while
-            // |lambda_t| <= mu lambda_n allows (Eq. 24's min(mu_s |F_n|, |F_t|) for a particle
-            // at rest, Eq. 25's mu_d |F_n| for one sliding; one mu between rigid bodies).
-            if (m.mu <= 0.0) continue;
-            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-                Point& p = points_[k];
-                const Vec3d dv = point_velocity(A, p.r_a) - point_velocity(B, p.r_b);
-                double t[2] = {p.tangent_impulse[0] - dot(dv, m.t1) * p.tangent_mass[0],
-                               p.tangent_impulse[1] - dot(dv, m.t2) * p.tangent_mass[1]};
-                const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * p.normal_impulse;
-                if (size > limit) {
-                    const double scale = size > 0.0 ? limit / size : 0.0;
-                    t[0] *= scale;
-                    t[1] *= scale;
-                }
-                const double d0 = t[0] - p.tangent_impulse[0], d1 = t[1] - p.tangent_impulse[1];
-                p.tangent_impulse[0] = t[0];
-                p.tangent_impulse[1] = t[1];
-                p.total_tangent[0] += d0;
-                p.total_tangent[1] += d1;
-                const Vec3d j = m.t1 * d0 + m.t2 * d1;
-                apply(A, j, p.r_a);
-                apply(B, -j, p.r_b);
-            }
-        }
-    };
     solve(true);
-
     if (bouncing) restitute(false);
 
     // The positions: the free step's, moved on by h times what the contacts changed.
@@ -528,20 +665,20 @@ void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWo
             s.dp = Vec3d{p.x[s.index], p.y[s.index], p.z[s.index]} - s.x0;
         }
     }
-    separations(world);
-    solve(false);  // relax
+    separations();
+    for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
 
     // A point still apart as the substep began that the solve or the relax had to stop met its
     // surface in this substep: it bounces in the next, from the speed it met it with under the
-    // substep's acceleration.
+    // substep's acceleration, sqrt(v_n^2 + 2 a s).
     for (Manifold& m : manifolds_) {
         if (m.e <= 0.0) continue;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
             if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
-            const double vn_start = dot((A.v_start + cross(A.w_start, p.r_a)) - (B.v_start + cross(B.w_start, p.r_b)), m.n);
-            const double vn_free = dot((A.v_free + cross(A.w_free, p.r_a)) - (B.v_free + cross(B.w_free, p.r_b)), m.n);
+            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
             const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
             const bool closing = vn_start < 0.0 || a_n < 0.0;
@@ -555,11 +692,12 @@ void ContactSolver::substep(std::vector<RigidContact>& contacts, const ContactWo
         absorbed_[island_of_[b]] -= W;
         energy_.total += W;
     }
-    store(world, false);
+    store(world);
 }
 
-// Restitution: each bouncing point toward its bounce_target, a few passes (the points of a face
-// bounce together), then no more energy than the island's contacts took this tick.
+// Restitution: each manifold's bouncing points toward their bounce_target together
+// (solve_block), the round of manifolds a few times for those that share a body; then no more
+// energy than the island's contacts took this tick.
 void ContactSolver::restitute(bool end_of_tick) {
     std::vector<std::uint32_t> islands;
     for (const Manifold& m : manifolds_) {
@@ -579,8 +717,6 @@ void ContactSolver::restitute(bool end_of_tick) {
         before[k] = {s.v, s.w};
         if (!end_of_tick) W_before[island_of_[touched[k]]] += work(s);
     }
-    // Each manifold's bouncing points together (solve_block), the round of manifolds a few
-    // times for manifolds that share a body.
     for (int round = 0; round < settings_.restitution_passes; ++round) {
         for (Manifold& m : manifolds_) {
             if (!m.bouncing) continue;
@@ -591,29 +727,32 @@ void ContactSolver::restitute(bool end_of_tick) {
                 if (points_[m.first + k].bounce > 0.0) index[n++] = int(k);
             }
             double K[4][4], b[4], lambda[4];
+            const double v_lin = dot(A.v - B.v, m.n);
             for (int i = 0; i < n; ++i) {
                 const Point& p = points_[m.first + std::uint32_t(index[i])];
-                const double v_n = dot(point_velocity(A, p.r_a) - point_velocity(B, p.r_b), m.n);
+                const double v_n = v_lin + dot(A.w, p.c_a) - dot(B.w, p.c_b);
                 b[i] = p.bounce_target - v_n;
                 for (int j = 0; j < n; ++j) {
                     K[i][j] = m.K[index[i]][index[j]];
                     b[i] += K[i][j] * points_[m.first + std::uint32_t(index[j])].bounce_impulse;
                 }
             }
-            if (!solve_block(n, K, b, lambda)) continue;
+            solve_block(m, n, K, b, lambda, n == int(m.count));
             for (int i = 0; i < n; ++i) {
                 Point& p = points_[m.first + std::uint32_t(index[i])];
-                const Vec3d j = m.n * (lambda[i] - p.bounce_impulse);
+                const double applied = lambda[i] - p.bounce_impulse;
                 p.bounce_impulse = lambda[i];
-                apply(A, j, p.r_a);
-                apply(B, -j, p.r_b);
+                A.v += m.n * (applied * A.inv_mass);
+                A.w += A.inv_I * (p.c_a * applied);
+                B.v -= m.n * (applied * B.inv_mass);
+                B.w -= B.inv_I * (p.c_b * applied);
             }
         }
     }
     // What the bounce gave each island, against what its contacts took: scaled down to fit.
+    const Vec3d half_hg = settings_.gravity * (end_of_tick ? 0.0 : 0.5 * h_);
     for (std::uint32_t island : islands) {
-        double B_lin = 0.0, C = 0.0, W_after = 0.0;
-        const Vec3d half_hg = settings_.gravity * (end_of_tick ? 0.0 : 0.5 * h_);
+        double B_lin = 0.0, C = 0.0;
         for (std::size_t k = 0; k < touched.size(); ++k) {
             if (island_of_[touched[k]] != island) continue;
             const Body& s = bodies_[touched[k]];
@@ -623,10 +762,9 @@ void ContactSolver::restitute(bool end_of_tick) {
             B_lin += m * dot(dv, before[k].first - half_hg) + dot(before[k].second, s.I * dw);
             C += 0.5 * (m * dot(dv, dv) + dot(dw, s.I * dw));
         }
-        W_after = B_lin + C;
         const double allowed = absorbed_[island] - W_before[island];
         double alpha = 1.0;
-        if (W_after > allowed) {
+        if (B_lin + C > allowed) {
             alpha = 0.0;
             if (allowed > 0.0 && C > 0.0) {
                 const double disc = B_lin * B_lin + 4.0 * C * allowed;
@@ -638,10 +776,10 @@ void ContactSolver::restitute(bool end_of_tick) {
                 s.v = before[k].first + (s.v - before[k].first) * alpha;
                 s.w = before[k].second + (s.w - before[k].second) * alpha;
             }
-        }
-        for (Manifold& m : manifolds_) {
-            if (!m.bouncing || m.island != island) continue;
-            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce_impulse *= alpha;
+            for (Manifold& m : manifolds_) {
+                if (!m.bouncing || m.island != island) continue;
+                for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce_impulse *= alpha;
+            }
         }
         const double W = alpha * B_lin + alpha * alpha * C;
         energy_.restitution += W;
@@ -655,7 +793,7 @@ void ContactSolver::restitute(bool end_of_tick) {
 
 // The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's
 // L += r x j, as J_world dw), a particle's v, and Verlet's step with it.
-void ContactSolver::store(const ContactWorld& world, bool) {
+void ContactSolver::store(const ContactWorld& world) {
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
         const Body& s = bodies_[b];
         if (s.kind == Body::Kind::Rigid) {
@@ -714,7 +852,7 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             s.w = s.w_free;
         }
         restitute(true);
-        store(world, false);
+        store(world);
     }
     // The record: what each point took over the tick, and what the next tick starts from.
     for (const Manifold& m : manifolds_) {
@@ -724,11 +862,21 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             c.approach_speed = -p.v_n0;
             c.normal_impulse = p.total_normal + p.total_bounce;
             c.bounce_impulse = p.total_bounce;
-            c.tangent_impulse[0] = p.total_tangent[0];
-            c.tangent_impulse[1] = p.total_tangent[1];
+            // The manifold's friction shared by the points: as their normal impulses over the
+            // tick (evenly when none), and its last substep's the same way for warm starting.
+            double total = 0.0, last = 0.0;
+            for (std::uint32_t q = m.first; q < m.first + m.count; ++q) {
+                total += points_[q].total_normal + points_[q].total_bounce;
+                last += points_[q].normal_impulse;
+            }
+            const double share = total > 0.0 ? (p.total_normal + p.total_bounce) / total : 1.0 / double(m.count);
+            const double share_last = last > 0.0 ? p.normal_impulse / last : 1.0 / double(m.count);
+            c.tangent_impulse[0] = m.total_friction[0] * share;
+            c.tangent_impulse[1] = m.total_friction[1] * share;
             c.warm_normal = p.normal_impulse / h_;
-            c.warm_tangent[0] = p.tangent_impulse[0] / h_;
-            c.warm_tangent[1] = p.tangent_impulse[1] / h_;
+            c.warm_tangent[0] = m.friction[0] * share_last / h_;
+            c.warm_tangent[1] = m.friction[1] * share_last / h_;
+            c.warm_twist = m.twist * share_last / h_;
             c.depth = -p.s;
         }
     }

@@ -3,46 +3,49 @@
 //
 // A contact's side a is a rigid body or a soft body's particle (a body of mass m with no
 // rotation: Eq. 38 without its rotational term), side b a rigid body or the ground (static:
-// 1/m = 0, J^-1 = 0).
+// 1/m = 0, J^-1 = 0). The points one pair of bodies touch at (up to four) form a manifold.
 //
-// The order of a tick (after Box2D v3's soft step; SOLVER_NOTES in the README's "Choices"):
-//   prepare     once a tick, where the tick begins: each contact's anchors r_a, r_b (Eq. 38's r),
-//               its effective masses (Eq. 38's denominator, for n and two tangents), the
-//               impulses it ended the last tick with (warm starting), and each body's inverse
-//               inertia in world axes (Eq. 32), frozen for the tick as the anchors are.
+// The order of a tick (after Box2D v3's soft step; the README's "Choices the physics makes"):
+//   prepare     once, where the tick begins: each point's anchors r_a, r_b (Eq. 38's r) and
+//               Jacobians (r x n, r x t), each manifold's coupling K (Eq. 38's denominators and
+//               what one point's impulse does to another's normal velocity) and its inverse,
+//               the impulses each point ended the last tick with (warm starting), each body's
+//               inverse inertia in world axes (Eq. 32), frozen for the tick as the anchors are.
 //   substep     after the integrator has moved every body freely through the substep h (its
 //               forces, its own scheme: Verlet, symplectic or explicit Euler, RK4):
 //                 warm start   the last substep's impulses again (gravity came back with h)
-//                 solve        one pass: each point's impulse toward its target normal velocity
-//                              (0 at a touching point, minus the gap over h at a point still
-//                              apart, a bounded push apart where they overlap: a soft
-//                              constraint), then friction within mu times it
+//                 solve        each manifold's normal impulses together (solve_block: its small
+//                              complementarity problem, exactly), toward each point's target
+//                              normal velocity: 0 where it touches, minus the gap over h where
+//                              it is still apart (a speculative contact), a bounded push apart
+//                              where it overlaps (a soft spring); then friction within mu
 //                 restitution  points that were hit: -e times the speed they came in with
 //                 positions    the free step's positions moved on by h times the velocity the
 //                              contacts changed (and turned by h times the turn they changed)
-//                 relax        one pass again without the push apart, so that pushing overlaps
-//                              apart leaves no velocity behind (no energy from it)
+//                 relax        the same without the push apart (a few passes), so that pushing
+//                              overlaps apart leaves no velocity behind, and no energy
 //   finish      the bounces still due (a point that met its surface in the last substep), and
 //               the impulses kept for the next tick.
 // The integrators never see a contact: whatever moved the bodies, the impulses act on the
 // velocities of the step's end, and the positions follow them. That is what makes the contacts
 // work the same under every integrator.
 //
-// Bounces at the surface: a point still apart when the substep began (a speculative contact)
-// may close its gap in the substep and no more; the bounce that throws it back is applied in
-// the next substep, once it is there, from the speed it would have met the surface with under
-// the substep's acceleration (sqrt(v_n^2 + 2 a s)). A point touching when the substep begins
-// bounces in the same substep, before the positions move: one impulse at one instant, so a
-// single point without friction takes Eq. 38's lambda = -(1 + e) v_n / denominator exactly.
+// Bounces at the surface: a point still apart when the substep began may close its gap in the
+// substep and no more; the bounce that throws it back is applied in the next substep, once it
+// is there, from the speed it met the surface with under the substep's acceleration
+// (sqrt(v_n^2 + 2 a s)). A point touching as the substep begins bounces in the same substep,
+// before the positions move: one impulse at one instant, so a single point without friction
+// takes Eq. 38's lambda = -(1 + e) v_n / denominator exactly.
 //
-// No energy from contacts: what a contact phase does to the kinetic energy is measured (the
-// work of its impulses at the substep's middle velocity, m dv . (v_avg - h g / 2), which for a
-// body resting on another is zero, where the plain change of 1/2 m v^2 would count the
-// gravity a substep brings and the contact takes away). Restitution may give back at most what
-// the contacts of its island took this tick: past that (several points hit at once can ask for
-// more under Newton's rule) its impulses are scaled down until it does not.
+// No energy from contacts: what a contact phase does is measured as the work of its impulses at
+// the substep's middle velocity, m dv . (v_avg - h g / 2) (for a body resting on another that
+// is zero, where the plain change of 1/2 m v^2 would count the gravity a substep brings and the
+// contact takes away). Restitution may give back at most what the contacts of its island took
+// this tick: past that (several points hit at once can ask for more under Newton's rule) its
+// impulses are scaled down until it does not.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -61,11 +64,13 @@ struct ContactSettings {
     int substeps = 4;             // of dt
     Vec3d gravity;                // m/s^2: its work is not the contacts' (see above)
     double bounce_speed = 0.4;    // slower impacts are resting contact: e = 0, m/s
-    double contact_hertz = 30.0;  // stiffness of the push apart between two moving bodies
+    double contact_hertz = 30.0;  // stiffness of the push apart between two moving bodies, unloaded
     double damping_ratio = 10.0;  // of that push (overdamped: it never overshoots)
+    double stack_depth = 5e-4;    // m: a loaded contact is made stiffer so that it stands at most this compressed
     double push_speed = 1.0;      // the fastest an overlap is pushed apart, m/s
     double touching = 5e-4;       // m: a point this close at a substep's start touches (it may bounce there)
-    int restitution_passes = 4;   // over the points that bounce in a substep
+    int relax_passes = 3;         // over every manifold after the positions moved
+    int restitution_passes = 4;   // over the manifolds that bounce in a substep
 };
 
 // A soft body's particles as the solver sees them.
@@ -78,8 +83,8 @@ struct SolverParticles {
     float* verlet_z = nullptr;
 };
 
-// What the solver needs of the world: the rigid bodies and their flat state now and when the
-// tick began and when the substep began, and the particles.
+// What the solver needs of the world: the rigid bodies and their flat state now, as the tick
+// began and as the substep began, and the particles.
 struct ContactWorld {
     std::span<const RigidBody> bodies;
     std::span<double> state;              // Listing 10's flat array, now
@@ -88,6 +93,19 @@ struct ContactWorld {
     std::span<SolverParticles> particles;
     std::span<const Vec3Array* const> particle_step_start_v;  // each soft body's v as the substep began
 };
+
+// A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,
+// written for one implicit step of h. bias_rate turns a depth into a velocity; mass_scale and
+// impulse_scale soften the impulse so that the push apart is that spring's, whatever the masses.
+struct Softness {
+    double bias_rate = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+};
+inline Softness make_soft(double hertz, double zeta, double h) {
+    if (hertz <= 0.0) return {};
+    const double omega = 2.0 * 3.14159265358979323846 * hertz;
+    const double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+    return {omega / a1, a2 * a3, a3};
+}
 
 // A body in the solver: a rigid body in contact, a particle in contact, or (index 0) the static
 // world. Its velocities are the ones the solver changes; the free ones are what the integrator
@@ -111,18 +129,18 @@ struct SolverBody {
 
 struct SolverPoint {
     Vec3d r_a, r_b;            // anchors from the centres as the tick began (Eq. 38's r)
+    Vec3d c_a, c_b;            // r x n: a turn's share of the normal velocity, w . (r x n)
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
     double s = 0.0;            // separation now, m
     double s_start = 0.0;      // as the substep began, m
     double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
-    double tangent_mass[2] = {0.0, 0.0};
+    Softness softness;         // of the push apart where it overlaps
     double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
-    double tangent_impulse[2] = {0.0, 0.0};
     double bounce_impulse = 0.0;  // restitution's, this substep
     double bounce = 0.0;          // > 0: bounces this substep from this speed, m/s
     double bounce_target = 0.0;   // the normal velocity the bounce leaves with
     double pending = 0.0;         // > 0: met its surface in the last substep at this speed
-    double total_normal = 0.0, total_tangent[2] = {0.0, 0.0}, total_bounce = 0.0;  // over the tick
+    double total_normal = 0.0, total_bounce = 0.0;  // over the tick
     double v_n0 = 0.0;            // v_rel . n as the tick began
     std::uint32_t contact = 0;    // in the tick's list
 };
@@ -131,23 +149,35 @@ inline constexpr std::uint32_t kMaxManifoldPoints = 4;
 
 struct SolverManifold {
     std::uint32_t a = 0, b = 0;  // solver bodies
-    double K[4][4] = {};         // the points' coupling (see solve_block in contact_solver.cpp)
-    Vec3d n, t1, t2;
+    Vec3d n, t[2];
     double mu = 0.0, e = 0.0;
     std::uint32_t first = 0, count = 0;
     std::uint32_t island = 0;
-    bool stiff = false;          // against the static world: twice as stiff (Box2D's choice)
     bool bouncing = false;       // some point bounces this substep
+    // Friction, at the points' centre: its anchors' r x t, effective masses, and impulses
+    // (this substep's, warm-started; over the tick); the turn about n and its reach.
+    Vec3d ft_a[2], ft_b[2];
+    double tangent_mass[2] = {0.0, 0.0};
+    double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};
+    double twist_mass = 0.0, twist_radius = 0.0, twist = 0.0;
+    // The points' coupling K (K_ij: point i's change of normal velocity per unit impulse at
+    // point j), and what solves it for all points pushing: its inverse, or for four corners on
+    // a plane (K singular: three would hold the face) the inverse with the null direction z
+    // filled in, and z itself (solve_block in contact_solver.cpp).
+    double K[4][4] = {};
+    double K_solve[4][4] = {};
+    double z[4] = {};
+    bool singular = false;
 };
 
 class ContactSolver {
 public:
-    // The tick's contacts (their order: a manifold's points next to each other, see
-    // RigidContact) and the last tick's (for warm starting by key).
+    // The tick's contacts (a manifold's points next to each other: RigidContact's order) and
+    // the last tick's (for warm starting by key).
     void prepare(std::vector<RigidContact>& contacts, const std::vector<RigidContact>& previous, const ContactWorld& world,
                  const ContactSettings& settings);
     // One substep: the integrator has moved every body through it already.
-    void substep(std::vector<RigidContact>& contacts, const ContactWorld& world);
+    void substep(const ContactWorld& world);
     // The bounces still due, and the record of what each contact did (RigidContact's fields).
     void finish(std::vector<RigidContact>& contacts, const ContactWorld& world);
 
@@ -158,10 +188,11 @@ private:
     using Point = SolverPoint;
     using Manifold = SolverManifold;
     void load(const ContactWorld& world);
-    void store(const ContactWorld& world, bool move_positions);
-    void separations(const ContactWorld& world);
-    double work(const Body& body) const;
+    void store(const ContactWorld& world);
+    void separations();
+    void solve(bool bias);
     void restitute(bool end_of_tick);
+    double work(const Body& body) const;
 
     ContactSettings settings_;
     double h_ = 0.0;

@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <utility>
 #include <cmath>
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "physics/error.h"
 #include "physics/mesh.h"
@@ -27,8 +29,8 @@ Part split(std::string_view part) {
     const auto colon = part.find(':');
     if (colon == std::string_view::npos) return {};
     const std::string_view kind = part.substr(0, colon);
-    if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "boxes" && kind != "pyramid" && kind != "torus" &&
-        kind != "lattice") {
+    if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "boxes" && kind != "pyramid" && kind != "random" &&
+        kind != "torus" && kind != "lattice") {
         return {};
     }
     return {kind, part.substr(colon + 1)};
@@ -243,6 +245,80 @@ void pyramid(std::size_t layers, Scene& scene) {
     }
 }
 
+// A scene nobody tuned, from its seed: two to eight boxes, balls and cylinders 5 cm to 5 m
+// across (log-uniform), 100 to 20,000 kg/m^3, thrown at up to 20 m/s and spun at up to
+// 20 rad/s, restitution 0 to 1 (a quarter of them exactly 1), friction 0 to 2, and none to
+// three fixed bodies in the air as obstacles, over the ground; no two overlap at the start
+// (their bounding spheres apart). The same seed gives the same scene on every machine: the
+// draws are integers from the generator, turned into numbers here, not by the standard
+// library's distributions (whose algorithms it leaves to each implementation).
+void random_scene(std::uint64_t seed, Scene& scene) {
+    std::mt19937_64 rng(0x5eedULL * 1000003ULL + seed);
+    const auto unit = [&] { return double(rng() >> 11) * 0x1.0p-53; };  // [0, 1)
+    const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(); };
+    const auto log_between = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit()); };
+    const auto direction = [&] {
+        for (;;) {
+            const Vec3d d{between(-1, 1), between(-1, 1), between(-1, 1)};
+            const double l = length(d);
+            if (l > 0.1 && l <= 1.0) return d / l;
+        }
+    };
+    const std::size_t moving = 2 + std::size_t(rng() % 7), fixed = std::size_t(rng() % 4);
+    std::vector<std::pair<Vec3d, double>> placed;  // centres and bounding radii
+    for (std::size_t i = 0; i < moving + fixed; ++i) {
+        RigidBodyDef def;
+        const bool is_fixed = i >= moving;
+        def.name = (is_fixed ? "wall" : "b") + std::to_string(is_fixed ? i - moving + 1 : i + 1);
+        double radius = 0.0;  // of the bounding sphere
+        switch (rng() % 3) {
+            case 0: {
+                def.shape = ShapeKind::Box;
+                const Vec3d size{log_between(0.05, 5.0), log_between(0.05, 5.0), log_between(0.05, 5.0)};
+                def.size = size;
+                radius = 0.5 * length(size);
+                break;
+            }
+            case 1:
+                def.shape = ShapeKind::Sphere;
+                def.radius = 0.5 * log_between(0.05, 5.0);
+                radius = *def.radius;
+                break;
+            default:
+                def.shape = ShapeKind::Cylinder;
+                def.radius = 0.5 * log_between(0.05, 5.0);
+                def.height = log_between(0.05, 5.0);
+                radius = std::hypot(*def.radius, 0.5 * *def.height);
+                break;
+        }
+        def.density = log_between(100.0, 20000.0);
+        def.orientation = Quat::from_axis_angle(direction(), between(0.0, 6.283185307179586));
+        def.restitution = float(rng() % 4 == 0 ? 1.0 : unit());
+        def.friction = float(between(0.0, 2.0));
+        def.fixed = is_fixed;
+        if (!is_fixed) {
+            def.velocity = direction() * between(0.0, 20.0);
+            def.angular_velocity = direction() * between(0.0, 20.0);
+        }
+        // A place where it overlaps nothing placed so far, above the ground (the fixed ones in
+        // the air); after many tries, higher up.
+        for (int attempt = 0;; ++attempt) {
+            const double spread = 6.0 + 0.1 * attempt;
+            const Vec3d at{between(-spread, spread), between(-spread, spread),
+                           radius + (is_fixed ? between(1.0, 6.0) : between(0.0, 8.0)) + 0.1 * attempt};
+            const bool clear = std::all_of(placed.begin(), placed.end(), [&](const auto& other) {
+                return length(at - other.first) > radius + other.second;
+            });
+            if (clear) {
+                def.position = at;
+                placed.emplace_back(at, radius);
+                break;
+            }
+        }
+        scene.rigid_bodies.push_back(def);
+    }
+}
+
 }  // namespace
 
 bool is_generated(std::string_view name) {
@@ -276,7 +352,7 @@ Mesh generated_mesh(std::string_view name) {
         return lattice(a);
     }
     throw InputError(std::string(name) +
-                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N, boxes:N and pyramid:L are scenes: use --scene)");
+                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N, boxes:N, pyramid:L and random:SEED are scenes: use --scene)");
 }
 
 Scene generated_scene(std::string_view name, const Scene& base) {
@@ -302,9 +378,11 @@ Scene generated_scene(std::string_view name, const Scene& base) {
             boxes(count_of(name, part, kMaxPile), scene);
         } else if (part.kind == "pyramid") {
             pyramid(count_of(name, part, kMaxLayers), scene);
+        } else if (part.kind == "random") {
+            random_scene(count_of(name, part, std::size_t(1) << 40), scene);
         } else {
             throw InputError(std::string(name) + ": '" + std::string(text) +
-                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, pile:N, boxes:N or pyramid:L");
+                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, pile:N, boxes:N, pyramid:L or random:SEED");
         }
         if (plus == std::string_view::npos) break;
         start = plus + 1;

@@ -120,10 +120,6 @@ void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, co
 }
 
 namespace {
-// Fixed-point passes for the midpoint orientation: each shrinks the error by about h |w| / 2,
-// so four leave (h |w| / 2)^4 of it: 1e-4 at half a radian a step.
-constexpr int kMidpointIterations = 4;
-
 bool is_momentum_slot(std::size_t k) {
     const std::size_t slot = k % rigid::kStateSize;
     return slot < rigid::X || (slot >= rigid::L && slot < rigid::Q);
@@ -148,25 +144,37 @@ void symplectic_positions(std::span<const RigidBody> bodies, std::span<const dou
         const Vec3d P{y[at + rigid::P], y[at + rigid::P + 1], y[at + rigid::P + 2]};
         const Vec3d L{y[at + rigid::L], y[at + rigid::L + 1], y[at + rigid::L + 2]};
         for (int k = 0; k < 3; ++k) y[at + std::size_t(rigid::X + k)] = start[at + std::size_t(rigid::X + k)] + h * P[k] * body.inv_mass;
-        // q_{n+1} = exp(h w) q_n, with w = J_world^-1 L (Eq. 32, 36) at the step's middle
-        // orientation, found by fixed-point iteration from w at the start.
-        const Quat q0{start[at + rigid::Q], start[at + rigid::Q + 1], start[at + rigid::Q + 2], start[at + rigid::Q + 3]};
-        const auto omega_at = [&](const Quat& q) {
-            const Mat3 R = q.to_matrix();
-            return (R * body.J_body_inv * R.transposed()) * L;
-        };
-        const auto turned = [&](const Vec3d& omega, double t) {
-            const double angle = length(omega) * t;
-            return angle > 0.0 ? Quat::from_axis_angle(omega / length(omega), angle) * q0 : q0;
-        };
-        Vec3d omega = omega_at(q0);
-        for (int iteration = 0; iteration < kMidpointIterations; ++iteration) omega = omega_at(turned(omega, 0.5 * h));
-        const Quat q1 = turned(omega, h);
+        const Quat q1 = free_turn(body, Quat{start[at + rigid::Q], start[at + rigid::Q + 1], start[at + rigid::Q + 2],
+                                             start[at + rigid::Q + 3]},
+                                  L, h);
         y[at + rigid::Q] = q1.w;
         y[at + rigid::Q + 1] = q1.x;
         y[at + rigid::Q + 2] = q1.y;
         y[at + rigid::Q + 3] = q1.z;
     }
+}
+
+Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h) {
+    // About principal axis k for time t: the body turns by t (a . L) / I_k about a = R e_k,
+    // its own axis, which the turn leaves where it is (an exact rotation; Eq. 35 with
+    // w = J_world^-1 L restricted to that axis's share of the energy).
+    Quat q = q0;
+    const auto turn_about = [&](int k, double t) {
+        const double I = body.principal_moments[k];
+        if (!(I > 0.0)) return;
+        const Mat3 R = q.normalized().to_matrix();
+        const Vec3d e{body.principal_axes.m[0][k], body.principal_axes.m[1][k], body.principal_axes.m[2][k]};
+        const Vec3d a = normalize(R * e);
+        const double angle = t * dot(a, L) / I;
+        if (angle != 0.0) q = Quat::from_axis_angle(a, angle) * q;
+    };
+    // Largest moment outside, smallest (the fastest turn) once in the middle.
+    turn_about(2, 0.5 * h);
+    turn_about(1, 0.5 * h);
+    turn_about(0, h);
+    turn_about(1, 0.5 * h);
+    turn_about(2, 0.5 * h);
+    return q;
 }
 
 void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage) {

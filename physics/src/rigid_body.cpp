@@ -342,6 +342,7 @@ RigidBody make_rigid_body(const RigidBodyDef& def) {
     body.fixed = def.fixed;
     body.inv_mass = def.fixed ? 0.0 : 1.0 / body.mass;
     body.J_body_inv = def.fixed ? Mat3{} : body.J_body.inverse();
+    symmetric_eigen(body.J_body, body.principal_moments, body.principal_axes);
     body.restitution = def.restitution;
     body.friction = def.friction;
     body.drag_coefficient = def.drag_coefficient;

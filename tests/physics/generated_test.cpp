@@ -47,13 +47,14 @@ TEST(Generated, PileIsNBodiesInABinAndAddsUpWithACloud) {
     EXPECT_EQ(mixed.rigid_bodies.size(), 34u);
     EXPECT_EQ(mixed.params.mesh, "cloud:200");
     EXPECT_TRUE(mixed.params.auto_substeps);
-    // It builds and runs: every body falls into the bin and none leaves it.
+    // It builds and runs: every body falls into the bin (or onto its walls, 0.1 m thick
+    // outside the floor's 1.4 m) and none leaves it.
     World world(make_world_def(mixed));
     world.run(100);
     ASSERT_EQ(world.status(), Status::Ok);
     for (std::size_t b = 4; b < world.rigid_body_count(); ++b) {
         const Vec3d x = world.rigid_motion(b).x;
-        EXPECT_LT(std::max(std::abs(x.x), std::abs(x.y)), 0.7) << world.rigid_body(b).name;
+        EXPECT_LT(std::max(std::abs(x.x), std::abs(x.y)), 0.8) << world.rigid_body(b).name;
         EXPECT_GT(x.z, 0.0) << world.rigid_body(b).name;
     }
 }

@@ -32,6 +32,7 @@ struct RigidContact {
     // The impulses of the tick's last substep, per second (N): the next tick starts from them.
     double warm_normal = 0.0;
     double warm_tangent[2] = {0.0, 0.0};
+    double warm_twist = 0.0;   // friction's turn about the normal (its manifold's share)
 };
 
 // The whole impulse a contact's solver applied on side a, normal and tangential (friction)

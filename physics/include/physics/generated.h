@@ -16,6 +16,9 @@
 //   boxes:N     a scene of N boxes and balls by turns dropped into a bin as pile:N is
 //   pyramid:L   a scene of a square pyramid of unit boxes, L layers (L x L at the bottom; 10
 //               layers are 385 boxes, 20 are 2,870), standing on the ground
+//   random:SEED a scene nobody tuned, from its seed (1 and up): two to eight boxes, balls and
+//               cylinders of any size, density, speed, spin, restitution and friction, and a few
+//               fixed obstacles in the air (what the contact fuzz test runs by the hundred)
 //   A+B         the scenes A and B together: pile:100+cloud:1000 is the bench's mixed scene
 //
 // A name is generated when it has this form; any other text is a file path.
@@ -29,8 +32,8 @@
 
 namespace softbody {
 
-// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N", "boxes:N", "pyramid:L" and
-// sums of them: a name,
+// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N", "boxes:N", "pyramid:L",
+// "random:SEED" and sums of them: a name,
 // not a file.
 bool is_generated(std::string_view name);
 

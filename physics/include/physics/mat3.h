@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 
 #include "physics/vec3.h"
 
@@ -113,6 +114,48 @@ constexpr Mat3 skew(const Vec3d& a) {
     r.m[2][0] = -a.y;
     r.m[2][1] = a.x;
     return r;
+}
+
+// The eigenvalues of a symmetric matrix (ascending) and its eigenvectors as the columns of a
+// rotation (cyclic Jacobi sweeps until the off-diagonal is rounding): for an inertia tensor,
+// the principal moments and axes.
+inline void symmetric_eigen(const Mat3& a, Vec3d& values, Mat3& vectors) {
+    Mat3 A = a;
+    Mat3 V = Mat3::identity();
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        const double off = A.m[0][1] * A.m[0][1] + A.m[0][2] * A.m[0][2] + A.m[1][2] * A.m[1][2];
+        const double scale = A.m[0][0] * A.m[0][0] + A.m[1][1] * A.m[1][1] + A.m[2][2] * A.m[2][2];
+        if (!(off > 1e-30 * scale)) break;
+        for (int p = 0; p < 2; ++p) {
+            for (int q = p + 1; q < 3; ++q) {
+                if (A.m[p][q] == 0.0) continue;
+                // The rotation in the (p, q) plane that zeroes A_pq.
+                const double theta = (A.m[q][q] - A.m[p][p]) / (2.0 * A.m[p][q]);
+                const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+                Mat3 J = Mat3::identity();
+                J.m[p][p] = c;
+                J.m[q][q] = c;
+                J.m[p][q] = s;
+                J.m[q][p] = -s;
+                A = J.transposed() * A * J;
+                V = V * J;
+            }
+        }
+    }
+    int order[3] = {0, 1, 2};
+    for (int i = 0; i < 3; ++i)
+        for (int j = i + 1; j < 3; ++j)
+            if (A.m[order[j]][order[j]] < A.m[order[i]][order[i]]) std::swap(order[i], order[j]);
+    Mat3 sorted;
+    for (int k = 0; k < 3; ++k) {
+        values[k] = A.m[order[k]][order[k]];
+        for (int r = 0; r < 3; ++r) sorted.m[r][k] = V.m[r][order[k]];
+    }
+    if (sorted.determinant() < 0.0) {
+        for (int r = 0; r < 3; ++r) sorted.m[r][2] = -sorted.m[r][2];
+    }
+    vectors = sorted;
 }
 
 }  // namespace softbody

@@ -102,6 +102,8 @@ struct RigidBody {
     double inv_mass = 0.0;
     Mat3 J_body;                // inertia tensor about the centre of mass, body axes (Eq. 29-31)
     Mat3 J_body_inv;            // its inverse (zero when fixed)
+    Mat3 principal_axes;        // J_body's eigenvectors (columns, body axes), for the free turn
+    Vec3d principal_moments;    // its eigenvalues, ascending, kg m^2
     bool fixed = false;
 
     std::optional<float> restitution, friction;  // empty: the world's

@@ -38,6 +38,10 @@ enum class Status { Ok, Diverged };
 
 // The least substeps a tick with contacts runs (their soft step, contact_solver.h).
 inline constexpr int kContactSubsteps = 4;
+// With automatic substeps, no rigid body turns more than this in one substep (rad), up to
+// kMaxRotationSubsteps a tick.
+inline constexpr double kMaxTurn = 0.5;
+inline constexpr int kMaxRotationSubsteps = 64;
 
 // The energy contacts took (< 0) or gave over a tick, J, and how much of it was restitution's.
 struct ContactEnergy {
@@ -227,6 +231,7 @@ private:
     void resolve_links(const std::vector<SpringDef>& springs);
     void update_substeps();
     void step(float h);
+    int rotation_substeps() const;
     void begin_contacts();
     ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
