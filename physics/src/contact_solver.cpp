@@ -1,5 +1,7 @@
 #include "contact_solver.h"
 
+#include "integrators.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -12,6 +14,10 @@ namespace {
 
 using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
+
+// A body whose angular velocity would be wrong by more than this (m/s, at its surface) with its
+// inertia as it was found has it found again (load()).
+constexpr double kStaleSpeed = 1e-4;
 
 // A point closer than this (m) touches: pushed apart softly where it overlaps (solve()).
 constexpr double kSpeculative = 1e-6;
@@ -170,6 +176,90 @@ double effective_inverse_mass(double inv_m_a, const Mat3& J_inv_a, const Vec3d& 
     return inv_m_a + inv_m_b + dot(n, cross(J_inv_a * cross(r_a, n), r_a)) + dot(n, cross(J_inv_b * cross(r_b, n), r_b));
 }
 
+// A manifold's Jacobians, couplings and masses from its points' anchors and its bodies'
+// inverse inertia as they are now (prepare, and again when a body has turned: refresh).
+void ContactSolver::setup(Manifold& m) {
+    const Body &A = bodies_[m.a], &B = bodies_[m.b];
+    const int n = int(m.count);
+    Point* points = &points_[m.first];
+    for (int x = 0; x < n; ++x) {
+        points[x].c_a = cross(points[x].r_a, m.n);
+        points[x].c_b = cross(points[x].r_b, m.n);
+    }
+    // Friction acts at the points' centre, and turns about n within their mean distance from it
+    // (solve()).
+    Vec3d centre;
+    for (int x = 0; x < n; ++x) centre += points[x].at;
+    centre = centre / double(n);
+    m.twist_radius = 0.0;
+    for (int x = 0; x < n; ++x) m.twist_radius += length(points[x].at - centre) / double(n);
+    const Vec3d r_a = A.kind == Body::Kind::Rigid ? centre - A.x : Vec3d{}, r_b = B.kind == Body::Kind::Rigid ? centre - B.x : Vec3d{};
+    for (int d = 0; d < 2; ++d) {
+        m.ft_a[d] = cross(r_a, m.t[d]);
+        m.ft_b[d] = cross(r_b, m.t[d]);
+        const double k_t = A.inv_mass + B.inv_mass + dot(m.ft_a[d], A.inv_I * m.ft_a[d]) + dot(m.ft_b[d], B.inv_I * m.ft_b[d]);
+        m.tangent_mass[d] = k_t > 0.0 ? 1.0 / k_t : 0.0;
+    }
+    const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
+    m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
+    // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
+    for (int x = 0; x < n; ++x) {
+        for (int y = 0; y < n; ++y) {
+            m.K[x][y] = A.inv_mass + B.inv_mass + dot(points[x].c_a, A.inv_I * points[y].c_a) +
+                        dot(points[x].c_b, B.inv_I * points[y].c_b);
+        }
+    }
+    // The push apart is a spring (contact_hertz, twice that against the static world, as Box2D
+    // has it), stiffer where the point carries a load: a spring holding an impulse lambda a
+    // substep at effective mass m stands compressed by lambda / (m h omega^2), so omega is raised
+    // until that is at most stack_depth, up to a quarter of the substep rate (beyond it the
+    // substeps cannot follow the spring, and a pyramid shivers).
+    const double base = (m.b == 0 ? 2.0 : 1.0) * std::min(settings_.contact_hertz, 0.25 / h_);
+    for (int x = 0; x < n; ++x) {
+        Point& p = points[x];
+        p.normal_mass = m.K[x][x] > 0.0 ? 1.0 / m.K[x][x] : 0.0;
+        const double loaded = std::sqrt(p.normal_impulse * p.normal_mass / (h_ * settings_.stack_depth)) / (2.0 * 3.14159265358979323846);
+        p.softness = make_soft(std::clamp(loaded, base, std::max(base, 0.25 / h_)), settings_.damping_ratio, h_);
+    }
+    // What solves K for all points at once. Four corners on a plane: their normal velocities
+    // depend on the bodies' motion only through v_n + (w_a - w_b) . (p x n), an affine function
+    // of the point in the plane, so K has rank 3 and z, the affine dependency of the four
+    // (sum z_i = 0, sum z_i q_i = 0 for their coordinates q_i in the plane), spans its null space.
+    double A4[4][4];
+    for (int x = 0; x < n; ++x)
+        for (int y = 0; y < n; ++y) A4[x][y] = m.K[x][y];
+    m.singular = false;
+    if (n == 4) {
+        double q[4][2];
+        for (int x = 0; x < 4; ++x) {
+            const Vec3d r = points[x].at - points[0].at;
+            q[x][0] = dot(r, m.t[0]);
+            q[x][1] = dot(r, m.t[1]);
+        }
+        const auto det3 = [&](int a, int b, int c) {
+            return (q[b][0] - q[a][0]) * (q[c][1] - q[a][1]) - (q[c][0] - q[a][0]) * (q[b][1] - q[a][1]);
+        };
+        const double z[4] = {det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)};
+        const double size = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + z[3] * z[3]);
+        double extent = 0.0;
+        for (int x = 0; x < 4; ++x) extent = std::max(extent, q[x][0] * q[x][0] + q[x][1] * q[x][1]);
+        if (size > 1e-9 * extent) {
+            m.singular = true;
+            const double fill = (m.K[0][0] + m.K[1][1] + m.K[2][2] + m.K[3][3]) / 4.0;
+            for (int x = 0; x < 4; ++x) m.z[x] = z[x] / size;
+            for (int x = 0; x < 4; ++x)
+                for (int y = 0; y < 4; ++y) A4[x][y] += fill * m.z[x] * m.z[y];
+        }
+    }
+    if (!m.singular && n > 1) {
+        for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
+    }
+    if (!invert(n, A4, m.K_solve)) {
+        for (int x = 0; x < n; ++x)
+            for (int y = 0; y < n; ++y) m.K_solve[x][y] = 0.0;
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Prepare: bodies, manifolds, anchors, Jacobians, couplings, warm starts, islands.
 // ---------------------------------------------------------------------------------------------
@@ -197,8 +287,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             s.index = std::uint32_t(b);
             s.inv_mass = body.inv_mass;
             const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
-            s.x0 = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
-            s.q0 = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
+            s.q0 = s.q_ref = s.q_anchor = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
             // Eq. 32 with q made unit first (between renormalisations |q| drifts under explicit
             // Euler and RK4), so that I and inv_I are each other's inverse: the impulses' L
             // (I dw) is then exactly r x j.
@@ -221,7 +311,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             s.index = i;
             s.soft = soft;
             s.inv_mass = p.inv_mass[i];
-            s.x0 = {p.x[i], p.y[i], p.z[i]};
+            s.x0 = s.x = {p.x[i], p.y[i], p.z[i]};
             map[i] = std::int32_t(bodies_.size());
             bodies_.push_back(s);
         }
@@ -286,21 +376,14 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         }
         m.count = std::uint32_t(end - i);
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        // The push apart is a spring (contact_hertz, twice that against the static world, as
-        // Box2D has it), stiffer where the point carries a load: a spring holding an impulse
-        // lambda a substep at effective mass m stands compressed by lambda / (m h omega^2), so
-        // omega is raised until that is at most stack_depth, up to a quarter of the substep
-        // rate (beyond it the substeps cannot follow the spring, and a pyramid shivers).
-        const double base = (m.b == 0 ? 2.0 : 1.0) * std::min(settings.contact_hertz, 0.25 / h_);
         for (std::size_t k = i; k < end; ++k) {
             const RigidContact& c = contacts[k];
             Point& p = points_[k];
             p = Point{};
             p.contact = std::uint32_t(k);
-            p.r_a = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
-            p.r_b = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
-            p.c_a = cross(p.r_a, m.n);
-            p.c_b = cross(p.r_b, m.n);
+            p.r_a = p.r_a0 = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
+            p.r_b = p.r_b0 = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
+            p.at = c.point;
             p.s0 = p.s = c.separation;
             if (const RigidContact* before = warm(k)) {
                 // Kept as forces (impulses per second): the substep may have changed since.
@@ -310,75 +393,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
                 m.twist += before->warm_twist * h_;
             }
         }
-        // Friction acts at the points' centre, and turns about n within their mean distance
-        // from it (solve()).
-        Vec3d centre;
-        for (std::size_t k = i; k < end; ++k) centre += contacts[k].point;
-        centre = centre / double(end - i);
-        for (std::size_t k = i; k < end; ++k) m.twist_radius += length(contacts[k].point - centre) / double(end - i);
-        const Vec3d r_a = A.kind == Body::Kind::Rigid ? centre - A.x0 : Vec3d{}, r_b = B.kind == Body::Kind::Rigid ? centre - B.x0 : Vec3d{};
-        for (int d = 0; d < 2; ++d) {
-            m.ft_a[d] = cross(r_a, m.t[d]);
-            m.ft_b[d] = cross(r_b, m.t[d]);
-            const double k_t = A.inv_mass + B.inv_mass + dot(m.ft_a[d], A.inv_I * m.ft_a[d]) + dot(m.ft_b[d], B.inv_I * m.ft_b[d]);
-            m.tangent_mass[d] = k_t > 0.0 ? 1.0 / k_t : 0.0;
-        }
-        const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
-        m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
-        // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
-        const int n = int(m.count);
-        for (int x = 0; x < n; ++x) {
-            for (int y = 0; y < n; ++y) {
-                const Point &p = points_[i + std::size_t(x)], &q = points_[i + std::size_t(y)];
-                m.K[x][y] = A.inv_mass + B.inv_mass + dot(p.c_a, A.inv_I * q.c_a) + dot(p.c_b, B.inv_I * q.c_b);
-            }
-        }
-        for (int x = 0; x < n; ++x) {
-            Point& p = points_[i + std::size_t(x)];
-            p.normal_mass = m.K[x][x] > 0.0 ? 1.0 / m.K[x][x] : 0.0;
-            const double loaded = std::sqrt(p.normal_impulse * p.normal_mass / (h_ * settings.stack_depth)) /
-                                  (2.0 * 3.14159265358979323846);
-            p.softness = make_soft(std::clamp(loaded, base, std::max(base, 0.25 / h_)), settings.damping_ratio, h_);
-        }
-        // What solves K for all points at once. Four corners on a plane: their normal
-        // velocities depend on the bodies' motion only through v_n + (w_a - w_b) . (p x n), an
-        // affine function of the point in the plane, so K has rank 3 and z, the affine
-        // dependency of the four (sum z_i = 0, sum z_i q_i = 0 for their coordinates q_i in the
-        // plane), spans its null space.
-        double A4[4][4];
-        for (int x = 0; x < n; ++x)
-            for (int y = 0; y < n; ++y) A4[x][y] = m.K[x][y];
-        if (n == 4) {
-            double q[4][2];
-            for (int x = 0; x < 4; ++x) {
-                const Vec3d r = contacts[i + std::size_t(x)].point - contacts[i].point;
-                q[x][0] = dot(r, m.t[0]);
-                q[x][1] = dot(r, m.t[1]);
-            }
-            const auto det3 = [&](int a, int b, int c) {
-                return (q[b][0] - q[a][0]) * (q[c][1] - q[a][1]) - (q[c][0] - q[a][0]) * (q[b][1] - q[a][1]);
-            };
-            double z[4] = {det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)};
-            const double size = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + z[3] * z[3]);
-            double extent = 0.0;
-            for (int x = 0; x < 4; ++x) extent = std::max(extent, q[x][0] * q[x][0] + q[x][1] * q[x][1]);
-            if (size > 1e-9 * extent) {
-                m.singular = true;
-                const double fill = (m.K[0][0] + m.K[1][1] + m.K[2][2] + m.K[3][3]) / 4.0;
-                for (int x = 0; x < 4; ++x) {
-                    m.z[x] = z[x] / size;
-                }
-                for (int x = 0; x < 4; ++x)
-                    for (int y = 0; y < 4; ++y) A4[x][y] += fill * m.z[x] * m.z[y];
-            }
-        }
-        if (!m.singular && n > 1) {
-            for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
-        }
-        if (!invert(n, A4, m.K_solve)) {
-            for (int x = 0; x < n; ++x)
-                for (int y = 0; y < n; ++y) m.K_solve[x][y] = 0.0;
-        }
+        setup(m);
         manifolds_.push_back(m);
         i = end;
     }
@@ -439,30 +454,78 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
 // ---------------------------------------------------------------------------------------------
 
 // The velocities the integrator left, where the substep began, and how far each body has come.
+// A rigid body's inverse inertia in world axes and its contacts' anchors are those of where they
+// were found; once the inertia would make its angular velocity J_world^-1 L wrong by more than
+// kStaleSpeed at its surface, both are found again: the inertia where the body is now (the end
+// of the free step, where its L is), the anchors where the substep began. A thin body needs
+// that often: a tilt delta puts |L| delta / I_min of spin on a rod's long axis, and velocities
+// from a stale inertia would be wrong enough to throw it. A body turning about a principal axis
+// (a plank tipping on an edge) or resting never does. (How far the anchors turn is bounded by
+// finding the contacts again more often: World::contact_intervals.)
 void ContactSolver::load(const ContactWorld& world) {
+    bool refreshed = false;
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
         Body& s = bodies_[b];
+        s.refreshed = false;
         if (s.kind == Body::Kind::Rigid) {
+            const RigidBody& body = world.bodies[s.index];
             const double* y = &world.state[s.index * rigid::kStateSize];
             const double* y0 = &world.step_start[s.index * rigid::kStateSize];
+            const Quat q{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            const Vec3d L{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+            const Quat q_start{y0[rigid::Q], y0[rigid::Q + 1], y0[rigid::Q + 2], y0[rigid::Q + 3]};
+            s.x = {y0[rigid::X], y0[rigid::X + 1], y0[rigid::X + 2]};
+            if (!(q == s.q_ref)) {
+                const Mat3 R = rotation_of(q);
+                const Mat3 inv_I = R * body.J_body_inv * R.transposed();
+                const Vec3d w = inv_I * L;
+                const double stale = length(w - s.inv_I * L) * body.bounding_radius;
+                if (stale > kStaleSpeed) {
+                    s.inv_I = inv_I;
+                    s.I = R * body.J_body * R.transposed();
+                    s.q_ref = q;
+                    s.q_anchor = q_start;
+                    s.refreshed = refreshed = true;
+                }
+            }
             s.v_free = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
-            s.w_free = s.inv_I * Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+            s.w_free = s.inv_I * L;
             s.v_start = Vec3d{y0[rigid::P], y0[rigid::P + 1], y0[rigid::P + 2]} * s.inv_mass;
             s.w_start = s.inv_I * Vec3d{y0[rigid::L], y0[rigid::L + 1], y0[rigid::L + 2]};
             // Where the substep began: the positions move on from the integrator's by the contacts' share.
-            s.dp = Vec3d{y0[rigid::X], y0[rigid::X + 1], y0[rigid::X + 2]} - s.x0;
-            s.turn = rotation_of(Quat{y0[rigid::Q], y0[rigid::Q + 1], y0[rigid::Q + 2], y0[rigid::Q + 3]}) *
-                     rotation_of(s.q0).transposed();
+            s.dp = s.x - s.x0;
+            s.turn = rotation_of(q_start) * rotation_of(s.q0).transposed();
         } else {
             const SolverParticles& p = world.particles[std::size_t(s.soft)];
             const Vec3Array& v0 = *world.particle_step_start_v[std::size_t(s.soft)];
             s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
             s.v_start = Vec3d(v0[s.index]);
+            s.x = Vec3d{p.x[s.index], p.y[s.index], p.z[s.index]} - s.v_free * h_;  // where the substep began
             s.w_free = s.w_start = {};
             s.turn = Mat3::identity();
         }
         s.v = s.v_free;
         s.w = s.w_free;
+    }
+    if (!refreshed) return;
+    // Each point of a turned body's manifold: its two anchors where they were as the substep
+    // began (each body's anchor from the start turned with it), and the point between them,
+    // where both impulses act (so that they keep the angular momentum about any point exactly).
+    for (Manifold& m : manifolds_) {
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        if (!A.refreshed && !B.refreshed) continue;
+        const auto anchor = [&](const Body& s, const Vec3d& r0) {
+            if (s.kind != Body::Kind::Rigid) return s.x;
+            return s.x + rotation_of(s.q_anchor) * (rotation_of(s.q0).transposed() * r0);
+        };
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            const Vec3d on_a = anchor(A, p.r_a0);
+            p.at = B.kind == Body::Kind::Static ? on_a : (on_a + anchor(B, p.r_b0)) * 0.5;
+            p.r_a = A.kind == Body::Kind::Rigid ? p.at - A.x : Vec3d{};
+            p.r_b = B.kind == Body::Kind::Rigid ? p.at - B.x : Vec3d{};
+        }
+        setup(m);
     }
 }
 
@@ -474,8 +537,8 @@ void ContactSolver::separations() {
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
             Vec3d d = A.dp - B.dp;
-            if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a - p.r_a;
-            if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b - p.r_b;
+            if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a0 - p.r_a0;
+            if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b0 - p.r_b0;
             p.s = p.s0 + dot(d, m.n);
         }
     }
@@ -587,9 +650,9 @@ void ContactSolver::substep(const ContactWorld& world) {
     load(world);
     separations();
 
-    // Which points bounce in this substep: one that met its surface in the last substep, or one
-    // touching now and coming in faster than a resting contact does. The bounce leaves at -e
-    // times that speed plus what the substep's forces add to it (as the free step would have).
+    // Which points bounce before the positions move: those touching as the substep begins and
+    // coming in faster than a resting contact does. The bounce leaves at -e times that speed,
+    // plus what the substep's forces add to it (as the free step would have).
     bool bouncing = false;
     for (Manifold& m : manifolds_) {
         m.bouncing = false;
@@ -599,21 +662,13 @@ void ContactSolver::substep(const ContactWorld& world) {
             p.bounce = 0.0;
             p.bounce_impulse = 0.0;
             p.s_start = p.s;
-            if (m.e <= 0.0) {
-                p.pending = 0.0;
-                continue;
-            }
+            if (m.e <= 0.0 || p.s > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            if (-vn_start <= settings_.bounce_speed) continue;
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
-            double speed = 0.0;
-            if (p.pending > 0.0) speed = p.pending;
-            else if (p.s <= settings_.touching && -vn_start > settings_.bounce_speed) speed = -vn_start;
-            p.pending = 0.0;
-            if (speed > 0.0) {
-                p.bounce = speed;
-                p.bounce_target = m.e * speed + (vn_free - vn_start);
-                m.bouncing = bouncing = true;
-            }
+            p.bounce = -vn_start;
+            p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
+            m.bouncing = bouncing = true;
         }
     }
 
@@ -643,14 +698,29 @@ void ContactSolver::substep(const ContactWorld& world) {
     solve(true);
     if (bouncing) restitute(false);
 
-    // The positions: the free step's, moved on by h times what the contacts changed.
+    // The positions: the free step's, moved on by h times what the contacts changed. The turn:
+    // under symplectic Euler and Verlet the free turn again from where the substep began, with
+    // the angular momentum the contacts left (free_turn keeps its energy); under the others,
+    // turned on by h times the change.
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
         Body& s = bodies_[b];
         const Vec3d dx = (s.v - s.v_free) * h;
         if (s.kind == Body::Kind::Rigid) {
             double* y = &world.state[s.index * rigid::kStateSize];
             for (int k = 0; k < 3; ++k) y[rigid::X + k] += dx[k];
-            const Quat q = turned(Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]}, (s.w - s.w_free) * h);
+            // Where the body's inertia was found again this substep, its turn is also brought to
+            // the energy the contacts' work was measured with, 1/2 L . J_world^-1 L there.
+            const Vec3d L = Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]} + s.I * (s.w - s.w_free);
+            const double energy = s.refreshed ? 0.5 * dot(L, s.inv_I * L) : -1.0;
+            const RigidBody& body = world.bodies[s.index];
+            Quat q;
+            if (settings_.exact_turn) {
+                const double* y0 = &world.step_start[s.index * rigid::kStateSize];
+                q = free_turn(body, Quat{y0[rigid::Q], y0[rigid::Q + 1], y0[rigid::Q + 2], y0[rigid::Q + 3]}, L, h, energy);
+            } else {
+                q = turned(Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]}, (s.w - s.w_free) * h);
+                if (energy >= 0.0) q = match_energy(body, q, L, energy);
+            }
             y[rigid::Q] = q.w;
             y[rigid::Q + 1] = q.x;
             y[rigid::Q + 2] = q.y;
@@ -668,37 +738,45 @@ void ContactSolver::substep(const ContactWorld& world) {
     separations();
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
 
-    // A point still apart as the substep began that the solve or the relax had to stop met its
-    // surface in this substep: it bounces in the next, from the speed it met it with under the
-    // substep's acceleration, sqrt(v_n^2 + 2 a s).
-    for (Manifold& m : manifolds_) {
-        if (m.e <= 0.0) continue;
-        const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
-            if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
-            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
-            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
-            const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
-            const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
-            const bool closing = vn_start < 0.0 || a_n < 0.0;
-            if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::sqrt(speed2);
-        }
-    }
-
     // The energy of this substep's contacts, island by island: what restitution may give back.
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
         const double W = work(bodies_[b]);
         absorbed_[island_of_[b]] -= W;
         energy_.total += W;
     }
+
+    // A point still apart as the substep began that the solve or the relax had to stop met its
+    // surface in this substep, and is there now: it bounces from here, at -e times the speed it
+    // met it with under the substep's acceleration, sqrt(v_n^2 + 2 a s).
+    bouncing = false;
+    for (Manifold& m : manifolds_) {
+        m.bouncing = false;
+        if (m.e <= 0.0) continue;
+        const Body &A = bodies_[m.a], &B = bodies_[m.b];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            p.bounce = 0.0;
+            p.bounce_impulse = 0.0;
+            if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
+            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
+            const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
+            const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
+            const bool closing = vn_start < 0.0 || a_n < 0.0;
+            if (!closing || speed2 <= settings_.bounce_speed * settings_.bounce_speed) continue;
+            p.bounce = std::sqrt(speed2);
+            p.bounce_target = m.e * p.bounce;
+            m.bouncing = bouncing = true;
+        }
+    }
+    if (bouncing) restitute(true);
     store(world);
 }
 
 // Restitution: each manifold's bouncing points toward their bounce_target together
 // (solve_block), the round of manifolds a few times for those that share a body; then no more
 // energy than the island's contacts took this tick.
-void ContactSolver::restitute(bool end_of_tick) {
+void ContactSolver::restitute(bool after_positions) {
     std::vector<std::uint32_t> islands;
     for (const Manifold& m : manifolds_) {
         if (m.bouncing) islands.push_back(m.island);
@@ -715,7 +793,7 @@ void ContactSolver::restitute(bool end_of_tick) {
     for (std::size_t k = 0; k < touched.size(); ++k) {
         const Body& s = bodies_[touched[k]];
         before[k] = {s.v, s.w};
-        if (!end_of_tick) W_before[island_of_[touched[k]]] += work(s);
+        if (!after_positions) W_before[island_of_[touched[k]]] += work(s);
     }
     for (int round = 0; round < settings_.restitution_passes; ++round) {
         for (Manifold& m : manifolds_) {
@@ -750,7 +828,9 @@ void ContactSolver::restitute(bool end_of_tick) {
         }
     }
     // What the bounce gave each island, against what its contacts took: scaled down to fit.
-    const Vec3d half_hg = settings_.gravity * (end_of_tick ? 0.0 : 0.5 * h_);
+    // Before the positions the bounce moves them too (the work at the substep's middle
+    // velocity, as work() counts it); after them, only the velocities: its work is 1/2 m dv^2.
+    const Vec3d half_hg = settings_.gravity * (after_positions ? 0.0 : 0.5 * h_);
     for (std::uint32_t island : islands) {
         double B_lin = 0.0, C = 0.0;
         for (std::size_t k = 0; k < touched.size(); ++k) {
@@ -783,7 +863,7 @@ void ContactSolver::restitute(bool end_of_tick) {
         }
         const double W = alpha * B_lin + alpha * alpha * C;
         energy_.restitution += W;
-        if (end_of_tick) {
+        if (after_positions) {
             absorbed_[island] -= W;
             energy_.total += W;
         }
@@ -818,42 +898,8 @@ void ContactSolver::store(const ContactWorld& world) {
     }
 }
 
-void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWorld& world) {
+void ContactSolver::finish(std::vector<RigidContact>& contacts) {
     if (manifolds_.empty()) return;
-    // The bounces still due: points that met their surface in the last substep, from there.
-    bool due = false;
-    for (Manifold& m : manifolds_) {
-        m.bouncing = false;
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
-            p.bounce = 0.0;
-            p.bounce_impulse = 0.0;
-            if (p.pending > 0.0 && m.e > 0.0) {
-                p.bounce = p.pending;
-                p.bounce_target = m.e * p.pending;
-                m.bouncing = due = true;
-            }
-            p.pending = 0.0;
-        }
-    }
-    if (due) {
-        for (std::size_t b = 1; b < bodies_.size(); ++b) {
-            Body& s = bodies_[b];
-            if (s.kind == Body::Kind::Rigid) {
-                const double* y = &world.state[s.index * rigid::kStateSize];
-                s.v_free = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
-                s.w_free = s.inv_I * Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
-            } else {
-                const SolverParticles& p = world.particles[std::size_t(s.soft)];
-                s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
-                s.w_free = {};
-            }
-            s.v = s.v_free;
-            s.w = s.w_free;
-        }
-        restitute(true);
-        store(world);
-    }
     // The record: what each point took over the tick, and what the next tick starts from.
     for (const Manifold& m : manifolds_) {
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {

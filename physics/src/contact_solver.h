@@ -70,6 +70,7 @@ struct ContactSettings {
     double push_speed = 1.0;      // the fastest an overlap is pushed apart, m/s
     double touching = 5e-4;       // m: a point this close at a substep's start touches (it may bounce there)
     int relax_passes = 3;         // over every manifold after the positions moved
+    bool exact_turn = false;      // symplectic Euler, Verlet: positions' turn by free_turn (see substep)
     int restitution_passes = 4;   // over the manifolds that bounce in a substep
 };
 
@@ -118,8 +119,12 @@ struct SolverBody {
     double inv_mass = 0.0;
     Mat3 inv_I;                // J_world^-1 (Eq. 32) as the tick began; zero for a particle
     Mat3 I;                    // J_world, its inverse
-    Vec3d x0;                  // centre (or particle) as the tick began
+    Vec3d x0;                  // centre (or particle) as the contacts were found
     Quat q0;
+    Vec3d x;                   // centre as the substep began (the arms are from it)
+    Quat q_ref;                // where inv_I and I were found
+    Quat q_anchor;             // the orientation the anchors were last placed at
+    bool refreshed = false;    // they were found again this substep
     Vec3d v, w;                // now
     Vec3d v_free, w_free;      // as the integrator left them this substep
     Vec3d v_start, w_start;    // as the substep began
@@ -128,7 +133,9 @@ struct SolverBody {
 };
 
 struct SolverPoint {
-    Vec3d r_a, r_b;            // anchors from the centres as the tick began (Eq. 38's r)
+    Vec3d r_a0, r_b0;          // anchors from the centres as the contacts were found
+    Vec3d at;                  // where the impulses act (world): the point, or between the two anchors now
+    Vec3d r_a, r_b;            // from the centres to it (Eq. 38's r)
     Vec3d c_a, c_b;            // r x n: a turn's share of the normal velocity, w . (r x n)
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
     double s = 0.0;            // separation now, m
@@ -139,7 +146,6 @@ struct SolverPoint {
     double bounce_impulse = 0.0;  // restitution's, this substep
     double bounce = 0.0;          // > 0: bounces this substep from this speed, m/s
     double bounce_target = 0.0;   // the normal velocity the bounce leaves with
-    double pending = 0.0;         // > 0: met its surface in the last substep at this speed
     double total_normal = 0.0, total_bounce = 0.0;  // over the tick
     double v_n0 = 0.0;            // v_rel . n as the tick began
     std::uint32_t contact = 0;    // in the tick's list
@@ -178,8 +184,8 @@ public:
                  const ContactSettings& settings);
     // One substep: the integrator has moved every body through it already.
     void substep(const ContactWorld& world);
-    // The bounces still due, and the record of what each contact did (RigidContact's fields).
-    void finish(std::vector<RigidContact>& contacts, const ContactWorld& world);
+    // The record of what each contact did (RigidContact's fields), and what the next starts from.
+    void finish(std::vector<RigidContact>& contacts);
 
     const ContactEnergy& energy() const { return energy_; }
 
@@ -187,11 +193,12 @@ private:
     using Body = SolverBody;
     using Point = SolverPoint;
     using Manifold = SolverManifold;
+    void setup(Manifold& m);
     void load(const ContactWorld& world);
     void store(const ContactWorld& world);
     void separations();
     void solve(bool bias);
-    void restitute(bool end_of_tick);
+    void restitute(bool after_positions);
     double work(const Body& body) const;
 
     ContactSettings settings_;

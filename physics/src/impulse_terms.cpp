@@ -1,5 +1,5 @@
 // Eq. 38 for one contact, term by term: what the app's "last collision" read-out shows. The
-// inertia tensors are the ones the solver used: where the tick that made the contact began.
+// inertia tensors are the ones the solver used: where the contact was found.
 #include "physics/world.h"
 
 namespace softbody {
@@ -19,9 +19,10 @@ ImpulseTerms World::impulse_terms(const RigidContact& c) const {
             inv_mass = soft_[std::size_t(c.soft)].inv_mass[std::size_t(index)];
             return;
         }
-        // Where the tick that made the contact began: the orientation its impulses were found at.
+        // Where the contact was found: the orientation its impulses were solved with.
         const std::size_t i = std::size_t(index);
-        const RigidMotion m = softbody::rigid_motion(rigid_[i], rigid_previous_state(i));
+        const RigidMotion m = softbody::rigid_motion(rigid_[i], y_contacts_start_.empty() ? rigid_previous_state(i)
+                                                                                          : &y_contacts_start_[i * rigid::kStateSize]);
         r = arm;
         r_x_n = cross(r, t.n);
         inv_mass = rigid_[i].inv_mass;

@@ -154,7 +154,7 @@ void symplectic_positions(std::span<const RigidBody> bodies, std::span<const dou
     }
 }
 
-Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h) {
+Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, double energy_target) {
     // About principal axis k for time t: the body turns by t (a . L) / I_k about a = R e_k,
     // its own axis, which the turn leaves where it is (an exact rotation; Eq. 35 with
     // w = J_world^-1 L restricted to that axis's share of the energy).
@@ -168,12 +168,51 @@ Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h) 
         const double angle = t * dot(a, L) / I;
         if (angle != 0.0) q = Quat::from_axis_angle(a, angle) * q;
     };
+    // The energy 1/2 L . J_world^-1 L of an orientation, from the body-axes angular momentum
+    // pi = R^T L in principal axes.
+    const auto body_momentum = [&](const Quat& orientation) {
+        const Vec3d b = orientation.normalized().to_matrix().transposed() * L;
+        return body.principal_axes.transposed() * b;
+    };
+    const Vec3d& I = body.principal_moments;
+    const auto energy = [&](const Vec3d& pi) { return 0.5 * (pi.x * pi.x / I.x + pi.y * pi.y / I.y + pi.z * pi.z / I.z); };
+    const double E0 = energy_target >= 0.0 ? energy_target : energy(body_momentum(q0));
     // Largest moment outside, smallest (the fastest turn) once in the middle.
     turn_about(2, 0.5 * h);
     turn_about(1, 0.5 * h);
     turn_about(0, h);
     turn_about(1, 0.5 * h);
     turn_about(2, 0.5 * h);
+    // The splitting keeps |L| exactly and the energy to O(h^2), wandering about its value; a
+    // free body keeps both: brought back (match_energy), a tumbling body's energy never rises,
+    // under any spin.
+    return match_energy(body, q, L, E0);
+}
+
+Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double E0) {
+    // The energy is brought to E0 by turning the body a little further about the axis
+    // pi x (J^-1 pi) (in its own axes: the direction in which the energy changes fastest with
+    // |pi| fixed), found by Newton's method: the turn ends on the intersection of the momentum
+    // sphere and the energy ellipsoid, where the true motion is.
+    const Vec3d& I = body.principal_moments;
+    if (!(I.x > 0.0 && I.y > 0.0 && I.z > 0.0) || !(E0 >= 0.0)) return q0;
+    const auto body_momentum = [&](const Quat& orientation) {
+        return body.principal_axes.transposed() * (orientation.normalized().to_matrix().transposed() * L);
+    };
+    const auto energy = [&](const Vec3d& pi) { return 0.5 * (pi.x * pi.x / I.x + pi.y * pi.y / I.y + pi.z * pi.z / I.z); };
+    Quat q = q0;
+    for (int iteration = 0; iteration < 3; ++iteration) {
+        const Vec3d pi = body_momentum(q);
+        const Vec3d grad{pi.x / I.x, pi.y / I.y, pi.z / I.z};
+        const Vec3d axis_principal = cross(pi, grad);
+        const double E = energy(pi), size = length(axis_principal);
+        if (!(size > 0.0) || std::abs(E - E0) <= 1e-15 * E0) break;
+        // Turning the body by theta about body axis a changes pi by -theta a x pi, and E by
+        // -theta (a x pi) . grad = -theta a . (pi x grad): the rate along a = axis / size is -size.
+        const double theta = (E - E0) / size;
+        const Vec3d axis_body = body.principal_axes * (axis_principal / size);
+        q = Quat::from_axis_angle(q.normalized().to_matrix() * axis_body, theta) * q;
+    }
     return q;
 }
 

@@ -61,8 +61,11 @@ void flat_euler(std::span<double> y, std::span<const double> dy, double h);
 // from `start` (the step's start) moved by the momenta now in `y`.
 void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double h);
 void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h);
-// q turned through h as a free body with angular momentum L turns (the splitting above).
-Quat free_turn(const RigidBody& body, const Quat& q, const Vec3d& L, double h);
+// q turned through h as a free body with angular momentum L turns (the splitting above), its
+// energy 1/2 L . J_world^-1 L kept at what it was at q, or at `energy_target` when one is given.
+Quat free_turn(const RigidBody& body, const Quat& q, const Vec3d& L, double h, double energy_target = -1.0);
+// q turned a little so that the body's energy 1/2 L . J_world^-1 L is `energy` (|L| kept).
+Quat match_energy(const RigidBody& body, const Quat& q, const Vec3d& L, double energy);
 // RK4: stage = y + w k; and at the end y += h/6 (k0 + 2 k1 + 2 k2 + k3).
 void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage);
 void flat_rk4_finish(std::span<double> y, std::span<const double> k0, std::span<const double> k1,

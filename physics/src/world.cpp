@@ -421,18 +421,29 @@ void World::step(float h) {
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
-// The substeps that keep every rigid body's turn in one within kMaxTurn: a body spun fast about
-// a thin axis (a ball rolling at 20 m/s turns at 800 rad/s if it is 5 cm across) would take RK4
-// past the stability of dq/dt = 1/2 w q (h |w| < 5.6) and explicit Euler's drift of |q| past
-// anything renormalising can mend; symplectic Euler's midpoint turn wants it small too. At
-// most kMaxRotationSubsteps.
+// The substeps a tick needs for its rigid bodies' turns. Symplectic Euler and Verlet turn each
+// body exactly about its principal axes and keep its energy (free_turn), stable at any rate: for
+// accuracy, no body turns more than kMaxTurn in a substep. RK4 and explicit Euler step
+// dq/dt = 1/2 w q as it is: RK4's energy error in a step is about (h w)^5 / 120 of it, so its
+// bodies turn at most kMaxTurnRK4 (1e-7 a step); and for a thin body w depends steeply on q:
+// tilting a rod by delta puts |L| delta of its angular momentum on its long axis, which spins it
+// at |L| delta / I_min. Their steps must follow that rate, |L| / I_min, to within
+// kMaxStiffTurn (RK4 is stable for h w < 2.8): a 5 m rod 5 cm thick tumbling at 20 rad/s needs
+// about 300 substeps a tick, a box none. At most kMaxRotationSubsteps.
 int World::rotation_substeps() const {
-    double fastest = 0.0;
+    const bool stiff = params_.integrator == Integrator::RK4 || params_.integrator == Integrator::ExplicitEuler;
+    const double turn = stiff ? kMaxTurnRK4 : kMaxTurn;
+    double needed = 1.0;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        if (!rigid_[b].fixed) fastest = std::max(fastest, length(rigid_motion(b).omega));
+        const RigidBody& body = rigid_[b];
+        if (body.fixed) continue;
+        const RigidMotion m = rigid_motion(b);
+        needed = std::max(needed, double(params_.dt) * length(m.omega) / turn);
+        if (stiff && body.principal_moments.x > 0.0) {
+            needed = std::max(needed, double(params_.dt) * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
+        }
     }
-    const double needed = std::ceil(double(params_.dt) * fastest / kMaxTurn);
-    return needed > double(kMaxRotationSubsteps) ? kMaxRotationSubsteps : std::max(1, int(needed));
+    return needed >= double(kMaxRotationSubsteps) ? kMaxRotationSubsteps : int(std::ceil(needed));
 }
 
 // What the contact solver sees of the world (contact_solver.h).
@@ -452,35 +463,54 @@ ContactWorld World::contact_world() {
         }
         solver_particle_v_[b] = &body.v_step_start;
     }
-    return {rigid_, y_, y_tick_prev_, y_step_start_, solver_particles_, solver_particle_v_};
+    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_};
 }
 
-// Every contact of the tick, found where the bodies are as it begins, each point within how far
-// its bodies can move in the tick (a speculative contact, as Box2D finds them): rigid bodies
-// with the ground and with one another, soft bodies' particles with rigid bodies. Then the
-// solver prepares them (anchors, masses, last tick's impulses).
-void World::begin_contacts() {
-    std::swap(previous_contacts_, contacts_);
+// Every contact of the interval (the tick, or a part of it), found where the bodies are as it
+// begins, each point within how far its bodies can move in it (a speculative contact, as Box2D
+// finds them): rigid bodies with the ground and with one another, soft bodies' particles with
+// rigid bodies. Then the solver prepares them (anchors, masses, last interval's impulses).
+// Returns the substeps to run: `steps`, or with contacts at least kContactSubsteps over the tick.
+// `again`: the same interval's contacts found again over a shorter one (the last ones kept).
+int World::begin_contacts(double interval, int steps, int intervals, bool again) {
+    if (!again) std::swap(previous_contacts_, contacts_);
     contacts_.clear();
-    const double dt = params_.dt;
+    y_contacts_start_ = y_;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, dt, contacts_);
+        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, interval, contacts_);
     }
-    rigid_body_contacts(rigid_, shapes_, y_, params_, dt, *rigid_contact_scratch_, contacts_);
+    rigid_body_contacts(rigid_, shapes_, y_, params_, interval, *rigid_contact_scratch_, contacts_);
     for (std::size_t b = 0; b < soft_.size(); ++b) {
-        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, dt, contacts_);
+        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, interval, contacts_);
     }
     for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
-    if (contacts_.empty()) return;
-    tick_substeps_ = std::max(tick_substeps_, kContactSubsteps);
+    if (contacts_.empty()) return steps;
+    steps = std::max(steps, (kContactSubsteps + intervals - 1) / intervals);
     ContactSettings settings;
-    settings.dt = dt;
-    settings.substeps = tick_substeps_;
+    settings.dt = interval;
+    settings.substeps = steps;
     settings.gravity = Vec3d(params_.gravity);
+    settings.exact_turn = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
     // As for particles at the ground: impacts slower than two ticks' worth of gravity are
     // resting contact.
-    settings.bounce_speed = 2.0 * length(Vec3d(params_.gravity)) * dt;
+    settings.bounce_speed = 2.0 * length(Vec3d(params_.gravity)) * double(params_.dt);
     solver_->prepare(contacts_, previous_contacts_, contact_world(), settings);
+    return steps;
+}
+
+// How many times contacts are found in a tick: once, or for a body turning fast enough to turn
+// more than kMaxContactTurn in a tick, once in every part of the tick in which none does. The
+// solver takes each body's anchors, normal and inertia where its contacts were found; a thin
+// plank tumbling at 20 rad/s turns 0.4 rad in a tick, by which its inertia in world axes and
+// its corners have moved on, and impulses found for where it was would no longer stop it (and
+// could throw it). Balls are left out: turning changes neither their shape nor their inertia.
+int World::contact_intervals() const {
+    double fastest = 0.0;
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (!rigid_[b].fixed && rigid_[b].shape != ShapeKind::Sphere) fastest = std::max(fastest, length(rigid_motion(b).omega));
+    }
+    const double needed = std::ceil(double(params_.dt) * fastest / kMaxContactTurn);
+    return needed >= double(kMaxRotationSubsteps) ? kMaxRotationSubsteps : std::max(1, int(needed));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -494,24 +524,44 @@ void World::tick() {
     y_good_ = y_;
     // The substeps: what the springs need; with automatic substeps, enough that no rigid body
     // turns more than kMaxTurn in one (rotation_substeps); and at least kContactSubsteps in a
-    // tick with contacts (their soft step, contact_solver.h). The contacts are found before the
-    // particles' last tick is forgotten: how far they went then says how far they may go now.
-    tick_substeps_ = substeps_;
-    if (params_.auto_substeps) tick_substeps_ = std::max(tick_substeps_, rotation_substeps());
-    if (!rigid_.empty()) begin_contacts();
-    for (SoftBody& body : soft_) {
-        copy(body.x, body.x_tick_prev);
-        copy(body.x, body.x_good);
-        copy(body.v, body.v_good);
-        copy(body.verlet_step, body.verlet_step_good);
-        body.verlet_h_good = body.verlet_h;
-    }
-    const float h = params_.dt / static_cast<float>(tick_substeps_);
-    for (int s = 0; s < tick_substeps_; ++s) step(h);
+    // tick with contacts (their soft step, contact_solver.h). Contacts are found once a tick,
+    // or once in each of several intervals when a body turns fast (contact_intervals). The
+    // first are found before the particles' last tick is forgotten: how far they went then
+    // says how far they may go now.
+    int substeps = substeps_;
+    if (params_.auto_substeps) substeps = std::max(substeps, rotation_substeps());
     contact_energy_ = {};
-    if (!contacts_.empty()) {
-        solver_->finish(contacts_, contact_world());
-        contact_energy_ = solver_->energy();
+    tick_substeps_ = 0;
+    int intervals = 1;
+    for (int i = 0; i < intervals; ++i) {
+        const double interval = double(params_.dt) / double(intervals);
+        int steps = (substeps + intervals - 1) / intervals;
+        if (!rigid_.empty()) {
+            steps = begin_contacts(interval, steps, intervals, false);
+            // Contacts, and a body turning fast: found again at every substep (nothing within
+            // reach of the whole tick means nothing to find in any part of it).
+            if (i == 0 && !contacts_.empty() && contact_intervals() > 1) {
+                intervals = std::max({contact_intervals(), substeps, kContactSubsteps});
+                steps = begin_contacts(double(params_.dt) / double(intervals), (substeps + intervals - 1) / intervals, intervals, true);
+            }
+        }
+        if (i == 0) {
+            for (SoftBody& body : soft_) {
+                copy(body.x, body.x_tick_prev);
+                copy(body.x, body.x_good);
+                copy(body.v, body.v_good);
+                copy(body.verlet_step, body.verlet_step_good);
+                body.verlet_h_good = body.verlet_h;
+            }
+        }
+        const float h = float(double(params_.dt) / double(intervals) / double(steps));
+        for (int s = 0; s < steps; ++s) step(h);
+        tick_substeps_ += steps;
+        if (!contacts_.empty()) {
+            solver_->finish(contacts_);
+            contact_energy_.total += solver_->energy().total;
+            contact_energy_.restitution += solver_->energy().restitution;
+        }
     }
     ++ticks_;
     // Listing 9: every few ticks, bring each quaternion back to unit length.

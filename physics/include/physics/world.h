@@ -38,10 +38,16 @@ enum class Status { Ok, Diverged };
 
 // The least substeps a tick with contacts runs (their soft step, contact_solver.h).
 inline constexpr int kContactSubsteps = 4;
-// With automatic substeps, no rigid body turns more than this in one substep (rad), up to
+// With automatic substeps, no rigid body turns more than kMaxTurn in one substep (rad; under RK4
+// and explicit Euler kMaxTurnRK4), nor, under those two, more than kMaxStiffTurn at the rate
+// |L| / I_min a thin body's long axis can reach (World::rotation_substeps), up to
 // kMaxRotationSubsteps a tick.
 inline constexpr double kMaxTurn = 0.5;
-inline constexpr int kMaxRotationSubsteps = 64;
+inline constexpr double kMaxTurnRK4 = 0.1;
+inline constexpr double kMaxStiffTurn = 2.0;
+// No body turns more than this (rad) between two findings of its contacts (World::contact_intervals).
+inline constexpr double kMaxContactTurn = 0.1;
+inline constexpr int kMaxRotationSubsteps = 1000;
 
 // The energy contacts took (< 0) or gave over a tick, J, and how much of it was restitution's.
 struct ContactEnergy {
@@ -218,8 +224,8 @@ public:
     Vec3 center_of_mass() const;  // of the first soft body
     float min_z() const;          // of the first soft body
     Stability stability() const;  // the least stable soft body's
-    // Substeps of the last tick: the springs' need (stability), or at least kContactSubsteps in a
-    // tick with contacts.
+    // Substeps of the last tick: the springs' need (stability), the rigid bodies' turns, or at
+    // least kContactSubsteps in a tick with contacts.
     int substeps_in_use() const { return tick_substeps_; }
     // What the contacts did to the kinetic energy in the last tick (< 0: took it), J, and
     // restitution's share of it (contact_solver.h says how it is measured).
@@ -232,7 +238,8 @@ private:
     void update_substeps();
     void step(float h);
     int rotation_substeps() const;
-    void begin_contacts();
+    int begin_contacts(double interval, int steps, int intervals, bool again);
+    int contact_intervals() const;
     ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
@@ -251,6 +258,7 @@ private:
     // The rigid bodies' flat state (Listing 10), the same at the start of the tick, the last
     // good one, and the integrators' stages and derivatives.
     std::vector<double> y_, y_tick_prev_, y_good_, y_stage_, y_step_start_, k_[4];
+    std::vector<double> y_contacts_start_;  // where the last contacts were found (their anchors' frame)
     std::vector<Vec3d> link_force_on_rigid_, link_torque_on_rigid_;
     std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
     std::vector<RigidContact> contacts_, previous_contacts_;
