@@ -121,15 +121,18 @@ struct SolverBody {
     Mat3 I;                    // J_world, its inverse
     Vec3d x0;                  // centre (or particle) as the contacts were found
     Quat q0;
-    Vec3d x;                   // centre as the substep began (the arms are from it)
-    Quat q_ref;                // where inv_I and I were found
-    Quat q_anchor;             // the orientation the anchors were last placed at
+    Vec3d x;                   // centre now: as the substep began, then after its positions (the arms are from it)
+    Quat q_now;                // orientation at the same moment
+    Quat q_ref;                // where inv_I and I were found (and the anchors placed)
+    Vec3d L_free, L_start;     // angular momentum after the free step, and as the substep began
     bool refreshed = false;    // they were found again this substep
     Vec3d v, w;                // now
     Vec3d v_free, w_free;      // as the integrator left them this substep
     Vec3d v_start, w_start;    // as the substep began
-    Vec3d dp;                  // the centre's move since the tick began
-    Mat3 turn;                 // the turn since the tick began
+    Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
+    Mat3 turn;                 // the turn over the same
+    Vec3d dp_free;             // the same to the free step's end
+    Mat3 turn_free;
 };
 
 struct SolverPoint {
@@ -140,6 +143,7 @@ struct SolverPoint {
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
     double s = 0.0;            // separation now, m
     double s_start = 0.0;      // as the substep began, m
+    double offset = 0.0;       // closing speed of the free step's displacement less its end velocity's, m/s
     double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
     Softness softness;         // of the push apart where it overlaps
     double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
@@ -159,7 +163,8 @@ struct SolverManifold {
     double mu = 0.0, e = 0.0;
     std::uint32_t first = 0, count = 0;
     std::uint32_t island = 0;
-    bool bouncing = false;       // some point bounces this substep
+    bool bouncing = false;       // some point bounces now
+    bool bounced = false;        // some point bounced before the positions this substep
     // Friction, at the points' centre: its anchors' r x t, effective masses, and impulses
     // (this substep's, warm-started; over the tick); the turn about n and its reach.
     Vec3d ft_a[2], ft_b[2];
@@ -195,8 +200,10 @@ private:
     using Manifold = SolverManifold;
     void setup(Manifold& m);
     void load(const ContactWorld& world);
+    void refresh(const ContactWorld& world);
     void store(const ContactWorld& world);
     void separations();
+    void free_offsets();
     void solve(bool bias);
     void restitute(bool after_positions);
     double work(const Body& body) const;
