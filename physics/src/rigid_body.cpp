@@ -379,7 +379,12 @@ RigidMotion rigid_motion(const RigidBody& body, const double* s) {
     m.L = {s[rigid::L], s[rigid::L + 1], s[rigid::L + 2]};
     m.q = {s[rigid::Q], s[rigid::Q + 1], s[rigid::Q + 2], s[rigid::Q + 3]};
     m.R = m.q.to_matrix();
-    m.J_inv = m.R * body.J_body_inv * m.R.transposed();  // Eq. 32
+    // Eq. 32 with the rotation q stands for (q made unit): between renormalisations |q| drifts
+    // (explicit Euler, RK4), and R from a longer q is no rotation. The body as drawn swells with
+    // it (m.R, as Listing 9 converts q); its spin does not: with R's growth in J_world^-1, w
+    // would grow with |q| and |q| faster with w, which blew RK4 up once a body spun fast.
+    const Mat3 rotation = m.q.normalized().to_matrix();
+    m.J_inv = rotation * body.J_body_inv * rotation.transposed();
     m.v = m.P * body.inv_mass;
     m.omega = m.J_inv * m.L;  // Eq. 36
     return m;
