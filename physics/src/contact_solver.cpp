@@ -791,39 +791,37 @@ void ContactSolver::substep(const ContactWorld& world) {
     }
 
     // A point still apart as the substep began that the solve or the relax had to stop met its
-    // surface in this substep, and is there now: it bounces from here, at -e times the speed it
-    // met it with under the substep's acceleration, sqrt(v_n^2 + 2 a s).
-    bouncing = false;
+    // surface in this substep: it bounces from there, at -e times the speed it met it with under
+    // the substep's acceleration, sqrt(v_n^2 + 2 a s), once the tick is over (finish): so the
+    // tick ends with the bodies touching, and a ball seen tick by tick (or drawn between ticks)
+    // turns at the surface, not above it. It rests there for the rest of the tick, held.
     for (Manifold& m : manifolds_) {
-        m.bouncing = false;
         if (m.e <= 0.0) continue;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            p.bounce = 0.0;
-            p.bounce_impulse = 0.0;
             if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
             const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
             const bool closing = vn_start < 0.0 || a_n < 0.0;
-            if (!closing || speed2 <= settings_.bounce_speed * settings_.bounce_speed) continue;
-            p.bounce = std::sqrt(speed2);
-            p.bounce_target = m.e * p.bounce;
-            m.bouncing = bouncing = true;
+            if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::max(p.pending, std::sqrt(speed2));
         }
     }
-    if (bouncing) restitute(true);
-    // A manifold that bounced is coming apart: it starts the next substep (or tick) from no
-    // impulse. Warm starting it from the impulse that stopped it would throw it again, and its
-    // friction, limited by that impulse, would spin it up.
+    forget_bounced();
+    store(world);
+}
+
+// A manifold that bounced is coming apart: it starts the next substep (or tick) from no impulse.
+// Warm starting it from the impulse that stopped it would throw it again, and its friction,
+// limited by that impulse, would spin it up.
+void ContactSolver::forget_bounced() {
     for (Manifold& m : manifolds_) {
         if (!m.bounced && !m.bouncing) continue;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].normal_impulse = 0.0;
         m.friction[0] = m.friction[1] = m.twist = 0.0;
     }
-    store(world);
 }
 
 // Restitution: each manifold's bouncing points toward their bounce_target together
@@ -951,8 +949,44 @@ void ContactSolver::store(const ContactWorld& world) {
     }
 }
 
-void ContactSolver::finish(std::vector<RigidContact>& contacts) {
+void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWorld& world) {
     if (manifolds_.empty()) return;
+    // The bounces due: points that met their surface in this tick, from there.
+    bool due = false;
+    for (Manifold& m : manifolds_) {
+        m.bouncing = m.bounced = false;
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+            Point& p = points_[k];
+            p.bounce = 0.0;
+            p.bounce_impulse = 0.0;
+            if (p.pending > 0.0 && m.e > 0.0) {
+                p.bounce = p.pending;
+                p.bounce_target = m.e * p.pending;
+                m.bouncing = due = true;
+            }
+            p.pending = 0.0;
+        }
+    }
+    if (due) {
+        for (std::size_t b = 1; b < bodies_.size(); ++b) {
+            Body& s = bodies_[b];
+            if (s.kind == Body::Kind::Rigid) {
+                const double* y = &world.state[s.index * rigid::kStateSize];
+                s.L_free = Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
+                s.v_free = Vec3d{y[rigid::P], y[rigid::P + 1], y[rigid::P + 2]} * s.inv_mass;
+                s.w_free = s.inv_I * s.L_free;
+            } else {
+                const SolverParticles& p = world.particles[std::size_t(s.soft)];
+                s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
+                s.w_free = {};
+            }
+            s.v = s.v_free;
+            s.w = s.w_free;
+        }
+        restitute(true);
+        forget_bounced();
+        store(world);
+    }
     // The record: what each point took over the tick, and what the next tick starts from.
     for (const Manifold& m : manifolds_) {
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {

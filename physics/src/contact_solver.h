@@ -150,6 +150,7 @@ struct SolverPoint {
     double bounce_impulse = 0.0;  // restitution's, this substep
     double bounce = 0.0;          // > 0: bounces this substep from this speed, m/s
     double bounce_target = 0.0;   // the normal velocity the bounce leaves with
+    double pending = 0.0;         // > 0: met its surface this tick at this speed; bounces as it ends
     double total_normal = 0.0, total_bounce = 0.0;  // over the tick
     double v_n0 = 0.0;            // v_rel . n as the tick began
     std::uint32_t contact = 0;    // in the tick's list
@@ -189,8 +190,9 @@ public:
                  const ContactSettings& settings);
     // One substep: the integrator has moved every body through it already.
     void substep(const ContactWorld& world);
-    // The record of what each contact did (RigidContact's fields), and what the next starts from.
-    void finish(std::vector<RigidContact>& contacts);
+    // The bounces due (points that met their surface in the tick), the record of what each
+    // contact did (RigidContact's fields), and what the next tick starts from.
+    void finish(std::vector<RigidContact>& contacts, const ContactWorld& world);
 
     const ContactEnergy& energy() const { return energy_; }
 
@@ -206,6 +208,7 @@ private:
     void free_offsets();
     void solve(bool bias);
     void restitute(bool after_positions);
+    void forget_bounced();
     double work(const Body& body) const;
 
     ContactSettings settings_;

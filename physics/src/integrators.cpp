@@ -190,30 +190,50 @@ Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, 
 }
 
 Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double E0) {
-    // The energy is brought to E0 by turning the body a little further about the axis
-    // pi x (J^-1 pi) (in its own axes: the direction in which the energy changes fastest with
-    // |pi| fixed), found by Newton's method: the turn ends on the intersection of the momentum
-    // sphere and the energy ellipsoid, where the true motion is.
+    // In the body's principal axes its angular momentum pi = R^T L has |pi| = |L| and energy
+    // sum pi_i^2 / 2 I_i. The pi' nearest pi with the same |pi| and energy E0, on the curve where
+    // the sphere meets the ellipsoid (where the true motion runs), is pi_i / (1 + m1 + m2 / I_i)
+    // for the two multipliers m1, m2 that meet both, found by Newton's method; the body is then
+    // turned by the least rotation taking pi to pi' in its own axes.
     const Vec3d& I = body.principal_moments;
-    if (!(I.x > 0.0 && I.y > 0.0 && I.z > 0.0) || !(E0 >= 0.0)) return q0;
-    const auto body_momentum = [&](const Quat& orientation) {
-        return body.principal_axes.transposed() * (orientation.normalized().to_matrix().transposed() * L);
-    };
-    const auto energy = [&](const Vec3d& pi) { return 0.5 * (pi.x * pi.x / I.x + pi.y * pi.y / I.y + pi.z * pi.z / I.z); };
-    Quat q = q0;
-    for (int iteration = 0; iteration < 3; ++iteration) {
-        const Vec3d pi = body_momentum(q);
-        const Vec3d grad{pi.x / I.x, pi.y / I.y, pi.z / I.z};
-        const Vec3d axis_principal = cross(pi, grad);
-        const double E = energy(pi), size = length(axis_principal);
-        if (!(size > 0.0) || std::abs(E - E0) <= 1e-15 * E0) break;
-        // Turning the body by theta about body axis a changes pi by -theta a x pi, and E by
-        // -theta (a x pi) . grad = -theta a . (pi x grad): the rate along a = axis / size is -size.
-        const double theta = (E - E0) / size;
-        const Vec3d axis_body = body.principal_axes * (axis_principal / size);
-        q = Quat::from_axis_angle(q.normalized().to_matrix() * axis_body, theta) * q;
+    if (!(I.x > 0.0 && I.y > 0.0 && I.z > 0.0) || !(E0 > 0.0)) return q0;
+    const Vec3d pi = body.principal_axes.transposed() * (q0.normalized().to_matrix().transposed() * L);
+    const double pi2[3] = {pi.x * pi.x, pi.y * pi.y, pi.z * pi.z}, inv_I[3] = {1.0 / I.x, 1.0 / I.y, 1.0 / I.z};
+    const double size2 = pi2[0] + pi2[1] + pi2[2];
+    // No energy other than E0 within reach: L^2 / 2 I_max <= E0 <= L^2 / 2 I_min.
+    if (!(E0 >= 0.5 * size2 * std::min({inv_I[0], inv_I[1], inv_I[2]}) && E0 <= 0.5 * size2 * std::max({inv_I[0], inv_I[1], inv_I[2]}))) {
+        return q0;
     }
-    return q;
+    double m1 = 0.0, m2 = 0.0;
+    for (int iteration = 0; iteration < 30; ++iteration) {
+        double f1 = -size2, f2 = -2.0 * E0, d11 = 0.0, d12 = 0.0, d22 = 0.0;
+        bool valid = true;
+        for (int i = 0; i < 3; ++i) {
+            const double d = 1.0 + m1 + m2 * inv_I[i];
+            valid = valid && d > 0.0;
+            const double c = pi2[i] / (d * d), dc = -2.0 * c / d;  // d(c)/d(d)
+            f1 += c;
+            f2 += c * inv_I[i];
+            d11 += dc;
+            d12 += dc * inv_I[i];
+            d22 += dc * inv_I[i] * inv_I[i];
+        }
+        if (!valid) return q0;
+        if (std::abs(f1) <= 1e-15 * size2 && std::abs(f2) <= 1e-15 * E0) break;
+        const double det = d11 * d22 - d12 * d12;
+        if (!(std::abs(det) > 0.0)) return q0;
+        m1 -= (f1 * d22 - f2 * d12) / det;
+        m2 -= (d11 * f2 - d12 * f1) / det;
+    }
+    const Vec3d target{pi.x / (1.0 + m1 + m2 * inv_I[0]), pi.y / (1.0 + m1 + m2 * inv_I[1]), pi.z / (1.0 + m1 + m2 * inv_I[2])};
+    // R'^T L = pi' for R' = R B with B pi' = pi: B turns pi' onto pi, about pi' x pi (body axes).
+    const Vec3d axis = cross(target, pi);
+    const double s = length(axis), c = dot(target, pi);
+    if (!(s > 0.0)) return q0;
+    const double angle = std::atan2(s, c);
+    const Vec3d axis_world = q0.normalized().to_matrix() * (body.principal_axes * (axis / s));
+    // Turning the body by B (in its own axes) is turning it by R B R^T in the world's.
+    return Quat::from_axis_angle(axis_world, angle) * q0;
 }
 
 void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage) {

@@ -558,7 +558,7 @@ void World::tick() {
         for (int s = 0; s < steps; ++s) step(h);
         tick_substeps_ += steps;
         if (!contacts_.empty()) {
-            solver_->finish(contacts_);
+            solver_->finish(contacts_, contact_world());
             contact_energy_.total += solver_->energy().total;
             contact_energy_.restitution += solver_->energy().restitution;
         }
