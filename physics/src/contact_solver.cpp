@@ -19,6 +19,9 @@ Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 // inertia as it was found has it found again (load()).
 constexpr double kStaleSpeed = 1e-4;
 
+// Passes of a manifold's normal impulses and its friction in turn, at most (solve()).
+constexpr int kCouplingPasses = 8;
+
 // A point closer than this (m) touches: pushed apart softly where it overlaps (solve()).
 constexpr double kSpeculative = 1e-6;
 
@@ -126,12 +129,22 @@ void solve_block(const SolverManifold& m, int n, const double (&K)[4][4], const 
             for (int k = 0; k < n; ++k) sum += m.K_solve[r][k] * c[k];
             y[r] = sum;
         }
-        // Rounding at the edge of the set: an impulse a hair below zero is zero.
-        double largest = 0.0;
-        for (int i = 0; i < n; ++i) largest = std::max(largest, y[i]);
-        bool all_push = true;
-        for (int i = 0; i < n; ++i) all_push = all_push && y[i] >= -1e-12 * largest;
-        if (all_push) {
+        // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
+        // corners the answer is the least-squares one: where the targets are not those of one
+        // motion of the face (corners at different gaps closing as far as each may), some
+        // corner would be left short of its target, and a set of three is the answer instead.
+        double largest = 0.0, scale = 0.0;
+        for (int i = 0; i < n; ++i) {
+            largest = std::max(largest, y[i]);
+            scale = std::max(scale, std::abs(b[i]));
+        }
+        bool fits_all = true;
+        for (int i = 0; i < n; ++i) {
+            double w = -b[i];
+            for (int j = 0; j < n; ++j) w += K[i][j] * std::max(y[j], 0.0);
+            fits_all = fits_all && y[i] >= -1e-12 * largest && std::abs(w) <= 1e-6 * scale + 1e-12;
+        }
+        if (fits_all) {
             for (int i = 0; i < n; ++i) x[i] = std::max(y[i], 0.0);
             return;
         }
@@ -202,6 +215,7 @@ void ContactSolver::setup(Manifold& m) {
     }
     const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
     m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
+    if (m.twist_mass == 0.0) m.twist = 0.0;  // one point (or none turning): no turn to hold
     // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
     for (int x = 0; x < n; ++x) {
         for (int y = 0; y < n; ++y) {
@@ -586,18 +600,22 @@ void ContactSolver::free_offsets() {
 }
 
 // The work the contacts did on a body since the integrator left it: the impulse m dv at the
-// substep's middle velocity, (v + v_free) / 2 - h g / 2, and the turn's change of 1/2 w . J w.
-// Zero for a body the contacts hold still under gravity.
-double ContactSolver::work(const Body& s) const {
+// substep's middle velocity, (v + v_free) / 2, less the weight's work over the move it added,
+// h dv (kinetic plus potential energy, exactly), and the turn's change of 1/2 w . J w.
+// `shown`: as the energy panel shows it, with half the weight's work: then a body the contacts
+// hold still under gravity takes zero (its contact only gives back the half step of fall the
+// free step lost, 1/2 m g^2 h^2), where exactly it gives that much. Restitution's allowance
+// counts exactly: a bounce also lifts the body h dv, and that is energy too.
+double ContactSolver::work(const Body& s, bool shown) const {
     if (s.inv_mass == 0.0) return 0.0;
     const Vec3d dv = s.v - s.v_free;
-    double W = dot(dv, (s.v + s.v_free) * 0.5 - settings_.gravity * (0.5 * h_)) / s.inv_mass;
+    double W = dot(dv, (s.v + s.v_free) * 0.5 - settings_.gravity * ((shown ? 0.5 : 1.0) * h_)) / s.inv_mass;
     if (s.kind == Body::Kind::Rigid) W += 0.5 * (dot(s.w, s.I * s.w) - dot(s.w_free, s.I * s.w_free));
     return W;
 }
 
 // One pass over every manifold: its normal impulses together toward each point's target, then
-// friction point by point. `bias`: push overlaps apart (the solve), or not (the relax).
+// friction at its centre. `bias`: push overlaps apart (the solve), or not (the relax).
 void ContactSolver::solve(bool bias) {
     const double inv_h = 1.0 / h_;
     for (Manifold& m : manifolds_) {
@@ -610,79 +628,114 @@ void ContactSolver::solve(bool bias) {
         // relax 0. Touching means closer than kSpeculative: a face resting on another has its
         // corners at gaps of +-1e-17 m, and treating each by the sign of its rounding would
         // hold one corner stiffly and the next softly, and turn the face.
-        const double v_lin = dot(A.v - B.v, m.n);
-        double b[4], lambda[4];
+        // The relax leaves a point that is still apart alone: it holds what is touching, and the
+        // next substep's solve stops that point at its surface (held here, it would stop short
+        // of it, and bounce in the air).
+        int index[4], count = 0;
         for (int i = 0; i < n; ++i) {
-            const Point& p = points_[m.first + std::uint32_t(i)];
+            if (bias || points_[m.first + std::uint32_t(i)].s <= kSpeculative) index[count++] = i;
+        }
+        double target[4] = {0.0, 0.0, 0.0, 0.0};
+        const auto normal_velocity = [&](const Point& p) {
+            return dot(A.v - B.v, m.n) + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
+        };
+        for (int k = 0; k < count; ++k) {
+            const Point& p = points_[m.first + std::uint32_t(index[k])];
             // The solve moves the positions: its normal velocity is the one that closes the gap
             // (free_offsets); the relax is of velocities alone.
-            const double v_n = v_lin + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
-            double target = 0.0;
+            const double v_n = normal_velocity(p);
             if (p.s > kSpeculative) {
-                target = -p.s * inv_h;
+                target[k] = -p.s * inv_h;
             } else if (bias) {
                 const Softness& soft = p.softness;
                 const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
-                target = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
+                target[k] = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
             }
-            b[i] = target - v_n;
-            for (int j = 0; j < n; ++j) b[i] += m.K[i][j] * points_[m.first + std::uint32_t(j)].normal_impulse;
         }
-        solve_block(m, n, m.K, b, lambda, true);
-        double sum = 0.0;
-        Vec3d L_a, L_b;
-        for (int i = 0; i < n; ++i) {
-            Point& p = points_[m.first + std::uint32_t(i)];
-            const double applied = lambda[i] - p.normal_impulse;
-            p.normal_impulse = lambda[i];
-            p.total_normal += applied;
-            sum += applied;
-            L_a += p.c_a * applied;
-            L_b += p.c_b * applied;
-        }
-        // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
-        A.v += m.n * (sum * A.inv_mass);
-        A.w += A.inv_I * L_a;
-        B.v -= m.n * (sum * B.inv_mass);
-        B.w -= B.inv_I * L_b;
-        // Coulomb friction in impulse form, at the manifold's centre (all its points together,
-        // so that a face slides, sticks and lands alike at every corner): the tangential
-        // velocity there brought to zero while |lambda_t| <= mu lambda_n allows, lambda_n the
-        // manifold's; and its turn about n, within mu lambda_n times the points' mean distance
-        // from the centre. For a particle (one point) that is Eq. 24's min(mu_s |F_n|, |F_t|)
-        // when it was at rest and Eq. 25's mu_d |F_n| when sliding; one mu between rigid bodies.
-        if (m.mu <= 0.0) continue;
-        double normal = 0.0;
-        for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
-        const Vec3d dv = A.v - B.v;
-        double t[2];
-        for (int d = 0; d < 2; ++d) {
-            const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
-            t[d] = m.friction[d] - v_t * m.tangent_mass[d];
-        }
-        const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
-        if (size > limit) {
-            const double scale = size > 0.0 ? limit / size : 0.0;
-            t[0] *= scale;
-            t[1] *= scale;
-        }
-        const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
-        m.friction[0] = t[0];
-        m.friction[1] = t[1];
-        m.total_friction[0] += d0;
-        m.total_friction[1] += d1;
-        const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
-        A.v += j * A.inv_mass;
-        A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
-        B.v -= j * B.inv_mass;
-        B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
-        if (m.twist_mass > 0.0) {
-            const double twist_limit = limit * m.twist_radius;
-            const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
-            const double d = turn - m.twist;
-            m.twist = turn;
-            A.w += A.inv_I * (m.n * d);
-            B.w -= B.inv_I * (m.n * d);
+        // The normal impulses toward those targets, together; then friction. Friction at a
+        // point away from the centre of mass turns the body, and so changes the normal
+        // velocities again: for a light body (a coin's rim, 5 mm from its centre) by more than
+        // the normal impulses just did. Then the two again, until the targets hold (at most
+        // kCouplingPasses).
+        for (int pass = 0; pass < kCouplingPasses; ++pass) {
+            double K[4][4], b[4], x[4], lambda[4];
+            for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
+            for (int k = 0; k < count; ++k) {
+                b[k] = target[k] - normal_velocity(points_[m.first + std::uint32_t(index[k])]);
+                for (int j = 0; j < count; ++j) {
+                    K[k][j] = m.K[index[k]][index[j]];
+                    b[k] += K[k][j] * lambda[index[j]];
+                }
+            }
+            if (count > 0) {
+                solve_block(m, count, count == n ? m.K : K, b, x, count == n);
+                for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
+            }
+            double sum = 0.0;
+            Vec3d L_a, L_b;
+            for (int i = 0; i < n; ++i) {
+                Point& p = points_[m.first + std::uint32_t(i)];
+                const double applied = lambda[i] - p.normal_impulse;
+                p.normal_impulse = lambda[i];
+                p.total_normal += applied;
+                sum += applied;
+                L_a += p.c_a * applied;
+                L_b += p.c_b * applied;
+            }
+            // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
+            A.v += m.n * (sum * A.inv_mass);
+            A.w += A.inv_I * L_a;
+            B.v -= m.n * (sum * B.inv_mass);
+            B.w -= B.inv_I * L_b;
+            // Coulomb friction in impulse form, at the manifold's centre (all its points
+            // together, so that a face slides, sticks and lands alike at every corner): the
+            // tangential velocity there brought to zero while |lambda_t| <= mu lambda_n allows,
+            // lambda_n the manifold's; and its turn about n, within mu lambda_n times the points'
+            // mean distance from the centre. For a particle (one point) that is Eq. 24's
+            // min(mu_s |F_n|, |F_t|) when it was at rest and Eq. 25's mu_d |F_n| when sliding; one
+            // mu between rigid bodies.
+            if (m.mu <= 0.0) break;
+            double normal = 0.0;
+            for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
+            const Vec3d dv = A.v - B.v;
+            double t[2];
+            for (int d = 0; d < 2; ++d) {
+                const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
+                t[d] = m.friction[d] - v_t * m.tangent_mass[d];
+            }
+            const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
+            if (size > limit) {
+                const double scale = size > 0.0 ? limit / size : 0.0;
+                t[0] *= scale;
+                t[1] *= scale;
+            }
+            const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
+            m.friction[0] = t[0];
+            m.friction[1] = t[1];
+            m.total_friction[0] += d0;
+            m.total_friction[1] += d1;
+            const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
+            A.v += j * A.inv_mass;
+            A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
+            B.v -= j * B.inv_mass;
+            B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+            if (m.twist_mass > 0.0) {
+                const double twist_limit = limit * m.twist_radius;
+                const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
+                const double d = turn - m.twist;
+                m.twist = turn;
+                A.w += A.inv_I * (m.n * d);
+                B.w -= B.inv_I * (m.n * d);
+            }
+            // Did friction undo the targets? By what it would take to restore them, against the
+            // impulses in play.
+            double undone = 0.0;
+            for (int k = 0; k < count; ++k) {
+                const Point& p = points_[m.first + std::uint32_t(index[k])];
+                const double short_of = target[k] - normal_velocity(p);
+                if (short_of > 0.0 || p.normal_impulse > 0.0) undone = std::max(undone, std::abs(short_of) * p.normal_mass);
+            }
+            if (undone <= 1e-3 * normal + 1e-12) break;
         }
     }
 }
@@ -781,16 +834,16 @@ void ContactSolver::substep(const ContactWorld& world) {
     }
     refresh(world);
     separations();
+    for (Point& p : points_) p.s_moved = p.s;
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
 
     // The energy of this substep's contacts, island by island: what restitution may give back.
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        const double W = work(bodies_[b]);
-        absorbed_[island_of_[b]] -= W;
-        energy_.total += W;
+        absorbed_[island_of_[b]] -= work(bodies_[b], false);
+        energy_.total += work(bodies_[b], true);
     }
 
-    // A point still apart as the substep began that the solve or the relax had to stop met its
+    // A point still apart as the substep began and touching once the positions moved met its
     // surface in this substep: it bounces from there, at -e times the speed it met it with under
     // the substep's acceleration, sqrt(v_n^2 + 2 a s), once the tick is over (finish): so the
     // tick ends with the bodies touching, and a ball seen tick by tick (or drawn between ticks)
@@ -800,7 +853,7 @@ void ContactSolver::substep(const ContactWorld& world) {
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            if (p.s_start <= settings_.touching || p.normal_impulse <= 0.0) continue;
+            if (p.s_start <= settings_.touching || p.s_moved > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
@@ -844,7 +897,7 @@ void ContactSolver::restitute(bool after_positions) {
     for (std::size_t k = 0; k < touched.size(); ++k) {
         const Body& s = bodies_[touched[k]];
         before[k] = {s.v, s.w};
-        if (!after_positions) W_before[island_of_[touched[k]]] += work(s);
+        if (!after_positions) W_before[island_of_[touched[k]]] += work(s, false);
     }
     for (int round = 0; round < settings_.restitution_passes; ++round) {
         for (Manifold& m : manifolds_) {
@@ -880,26 +933,29 @@ void ContactSolver::restitute(bool after_positions) {
     }
     // What the bounce gave each island, against what its contacts took: scaled down to fit.
     // Before the positions the bounce moves them too (the work at the substep's middle
-    // velocity, as work() counts it); after them, only the velocities: its work is 1/2 m dv^2.
-    const Vec3d half_hg = settings_.gravity * (after_positions ? 0.0 : 0.5 * h_);
+    // velocity, as work() counts it, exactly for the allowance, and as shown); after them, only
+    // the velocities: its work is 1/2 m dv^2.
+    const Vec3d hg = settings_.gravity * (after_positions ? 0.0 : h_);
     for (std::uint32_t island : islands) {
-        double B_lin = 0.0, C = 0.0;
+        double B_exact = 0.0, B_shown = 0.0, C = 0.0;
         for (std::size_t k = 0; k < touched.size(); ++k) {
             if (island_of_[touched[k]] != island) continue;
             const Body& s = bodies_[touched[k]];
             const double m = 1.0 / s.inv_mass;
             const Vec3d dv = s.v - before[k].first, dw = s.w - before[k].second;
             // W(alpha) = alpha B + alpha^2 C for the bounce scaled by alpha.
-            B_lin += m * dot(dv, before[k].first - half_hg) + dot(before[k].second, s.I * dw);
+            const double turn = dot(before[k].second, s.I * dw);
+            B_exact += m * dot(dv, before[k].first - hg) + turn;
+            B_shown += m * dot(dv, before[k].first - hg * 0.5) + turn;
             C += 0.5 * (m * dot(dv, dv) + dot(dw, s.I * dw));
         }
         const double allowed = absorbed_[island] - W_before[island];
         double alpha = 1.0;
-        if (B_lin + C > allowed) {
+        if (B_exact + C > allowed) {
             alpha = 0.0;
             if (allowed > 0.0 && C > 0.0) {
-                const double disc = B_lin * B_lin + 4.0 * C * allowed;
-                alpha = std::clamp((-B_lin + std::sqrt(std::max(disc, 0.0))) / (2.0 * C), 0.0, 1.0);
+                const double disc = B_exact * B_exact + 4.0 * C * allowed;
+                alpha = std::clamp((-B_exact + std::sqrt(std::max(disc, 0.0))) / (2.0 * C), 0.0, 1.0);
             }
             for (std::size_t k = 0; k < touched.size(); ++k) {
                 if (island_of_[touched[k]] != island) continue;
@@ -912,11 +968,11 @@ void ContactSolver::restitute(bool after_positions) {
                 for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce_impulse *= alpha;
             }
         }
-        const double W = alpha * B_lin + alpha * alpha * C;
-        energy_.restitution += W;
+        const double shown = alpha * B_shown + alpha * alpha * C;
+        energy_.restitution += shown;
         if (after_positions) {
-            absorbed_[island] -= W;
-            energy_.total += W;
+            absorbed_[island] -= alpha * B_exact + alpha * alpha * C;
+            energy_.total += shown;
         }
     }
     for (Point& p : points_) p.total_bounce += p.bounce_impulse;

@@ -6,43 +6,49 @@
 // 1/m = 0, J^-1 = 0). The points one pair of bodies touch at (up to four) form a manifold.
 //
 // The order of a tick (after Box2D v3's soft step; the README's "Choices the physics makes"):
-//   prepare     once, where the tick begins: each point's anchors r_a, r_b (Eq. 38's r) and
-//               Jacobians (r x n, r x t), each manifold's coupling K (Eq. 38's denominators and
-//               what one point's impulse does to another's normal velocity) and its inverse,
-//               the impulses each point ended the last tick with (warm starting), each body's
-//               inverse inertia in world axes (Eq. 32), frozen for the tick as the anchors are.
+//   prepare     once, where the contacts were found (the tick's start, or each part of the tick
+//               for a body turning fast: World::contact_intervals): each point's anchors r_a, r_b
+//               (Eq. 38's r), each manifold's coupling K (Eq. 38's denominators and what one
+//               point's impulse does to another's normal velocity) and its inverse, the impulses
+//               each point ended the last tick with (warm starting), each body's inverse inertia
+//               in world axes (Eq. 32).
 //   substep     after the integrator has moved every body freely through the substep h (its
-//               forces, its own scheme: Verlet, symplectic or explicit Euler, RK4):
+//               forces, its own scheme: Verlet, symplectic or explicit Euler, RK4); the impulses
+//               act as the substep began:
 //                 warm start   the last substep's impulses again (gravity came back with h)
 //                 solve        each manifold's normal impulses together (solve_block: its small
 //                              complementarity problem, exactly), toward each point's target
-//                              normal velocity: 0 where it touches, minus the gap over h where
-//                              it is still apart (a speculative contact), a bounded push apart
-//                              where it overlaps (a soft spring); then friction within mu
-//                 restitution  points that were hit: -e times the speed they came in with
+//                              normal velocity: minus the gap over h where it is still apart (a
+//                              speculative contact: close it in this substep, no more), a bounded
+//                              push apart where it touches or overlaps (a soft spring); then
+//                              friction within mu, at the manifold's centre
+//                 restitution  points touching as the substep began and coming in fast: -e times
+//                              the speed they came in with, at that instant
 //                 positions    the free step's positions moved on by h times the velocity the
-//                              contacts changed (and turned by h times the turn they changed)
+//                              contacts changed, the turn redone with the new L
 //                 relax        the same without the push apart (a few passes), so that pushing
 //                              overlaps apart leaves no velocity behind, and no energy
-//   finish      the bounces still due (a point that met its surface in the last substep), and
-//               the impulses kept for the next tick.
+//   finish      the bounces of points that met their surface during the tick, from there, and the
+//               impulses kept for the next tick.
 // The integrators never see a contact: whatever moved the bodies, the impulses act on the
 // velocities of the step's end, and the positions follow them. That is what makes the contacts
 // work the same under every integrator.
 //
 // Bounces at the surface: a point still apart when the substep began may close its gap in the
-// substep and no more; the bounce that throws it back is applied in the next substep, once it
-// is there, from the speed it met the surface with under the substep's acceleration
-// (sqrt(v_n^2 + 2 a s)). A point touching as the substep begins bounces in the same substep,
-// before the positions move: one impulse at one instant, so a single point without friction
-// takes Eq. 38's lambda = -(1 + e) v_n / denominator exactly.
+// substep and no more; it stays there for the rest of the tick, and as the tick ends it leaves
+// at -e times the speed it met the surface with under the substep's acceleration
+// (sqrt(v_n^2 + 2 a s)): a tick ends with the bodies touching, and a ball watched tick by tick
+// turns at the surface, not above it. A point touching as a substep begins bounces in that
+// substep, before the positions move: one impulse at one instant, so a single point without
+// friction takes Eq. 38's lambda = -(1 + e) v_n / denominator exactly.
 //
 // No energy from contacts: what a contact phase does is measured as the work of its impulses at
 // the substep's middle velocity, m dv . (v_avg - h g / 2) (for a body resting on another that
 // is zero, where the plain change of 1/2 m v^2 would count the gravity a substep brings and the
 // contact takes away). Restitution may give back at most what the contacts of its island took
 // this tick: past that (several points hit at once can ask for more under Newton's rule) its
-// impulses are scaled down until it does not.
+// impulses are scaled down until it does not. A manifold that bounced starts again from no
+// impulse (warm starting from the impulse that stopped it would throw it again).
 #pragma once
 
 #include <cmath>
@@ -143,6 +149,7 @@ struct SolverPoint {
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
     double s = 0.0;            // separation now, m
     double s_start = 0.0;      // as the substep began, m
+    double s_moved = 0.0;      // once the substep's positions moved, m
     double offset = 0.0;       // closing speed of the free step's displacement less its end velocity's, m/s
     double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
     Softness softness;         // of the push apart where it overlaps
@@ -209,7 +216,7 @@ private:
     void solve(bool bias);
     void restitute(bool after_positions);
     void forget_bounced();
-    double work(const Body& body) const;
+    double work(const Body& body, bool shown) const;
 
     ContactSettings settings_;
     double h_ = 0.0;

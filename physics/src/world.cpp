@@ -20,6 +20,9 @@ namespace softbody {
 
 namespace {
 
+// The slowest impact that bounces when there is no gravity to set the scale (m/s).
+constexpr double kRestingSpeed = 0.01;
+
 void copy(const Vec3Array& from, Vec3Array& to) {
     to.x = from.x;
     to.y = from.y;
@@ -421,7 +424,7 @@ void World::step(float h) {
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
-// The substeps a tick needs for its rigid bodies' turns. Symplectic Euler and Verlet turn each
+// The substeps `time` (a tick, or what is left of it) needs for its rigid bodies' turns. Symplectic Euler and Verlet turn each
 // body exactly about its principal axes and keep its energy (free_turn), stable at any rate: for
 // accuracy, no body turns more than kMaxTurn in a substep. RK4 and explicit Euler step
 // dq/dt = 1/2 w q as it is: RK4's energy error in a step is about (h w)^5 / 120 of it, so its
@@ -430,7 +433,7 @@ void World::step(float h) {
 // at |L| delta / I_min. Their steps must follow that rate, |L| / I_min, to within
 // kMaxStiffTurn (RK4 is stable for h w < 2.8): a 5 m rod 5 cm thick tumbling at 20 rad/s needs
 // about 300 substeps a tick, a box none. At most kMaxRotationSubsteps.
-int World::rotation_substeps() const {
+int World::rotation_substeps(double time) const {
     const bool stiff = params_.integrator == Integrator::RK4 || params_.integrator == Integrator::ExplicitEuler;
     const double turn = stiff ? kMaxTurnRK4 : kMaxTurn;
     double needed = 1.0;
@@ -438,12 +441,13 @@ int World::rotation_substeps() const {
         const RigidBody& body = rigid_[b];
         if (body.fixed) continue;
         const RigidMotion m = rigid_motion(b);
-        needed = std::max(needed, double(params_.dt) * length(m.omega) / turn);
+        needed = std::max(needed, time * length(m.omega) / turn);
         if (stiff && body.principal_moments.x > 0.0) {
-            needed = std::max(needed, double(params_.dt) * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
+            needed = std::max(needed, time * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
         }
     }
-    return needed >= double(kMaxRotationSubsteps) ? kMaxRotationSubsteps : int(std::ceil(needed));
+    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
+    return needed >= most ? int(most) : int(std::ceil(needed));
 }
 
 // What the contact solver sees of the world (contact_solver.h).
@@ -466,51 +470,57 @@ ContactWorld World::contact_world() {
     return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_};
 }
 
-// Every contact of the interval (the tick, or a part of it), found where the bodies are as it
-// begins, each point within how far its bodies can move in it (a speculative contact, as Box2D
-// finds them): rigid bodies with the ground and with one another, soft bodies' particles with
-// rigid bodies. Then the solver prepares them (anchors, masses, last interval's impulses).
-// Returns the substeps to run: `steps`, or with contacts at least kContactSubsteps over the tick.
-// `again`: the same interval's contacts found again over a shorter one (the last ones kept).
-int World::begin_contacts(double interval, int steps, int intervals, bool again) {
-    if (!again) std::swap(previous_contacts_, contacts_);
+// Every contact within reach of `reach` seconds (the tick, or the rest of it), found where the
+// bodies are now, each point within how far its bodies can move in that time (a speculative
+// contact, as Box2D finds them): rigid bodies with the ground and with one another, soft bodies'
+// particles with rigid bodies. The last ones are kept for their impulses.
+void World::find_contacts(double reach) {
+    std::swap(previous_contacts_, contacts_);
     contacts_.clear();
     y_contacts_start_ = y_;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, interval, contacts_);
+        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, reach, contacts_);
     }
-    rigid_body_contacts(rigid_, shapes_, y_, params_, interval, *rigid_contact_scratch_, contacts_);
+    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_);
     for (std::size_t b = 0; b < soft_.size(); ++b) {
-        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, interval, contacts_);
+        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, reach, contacts_);
     }
+}
+
+// The solver prepares the contacts found for an interval starting now (the tick, the rest of it,
+// or one substep of it): anchors, masses, the last interval's impulses. Returns the substeps to
+// run: `steps`, or with contacts at least kContactSubsteps a tick.
+int World::begin_contacts(double interval, int steps) {
     for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     if (contacts_.empty()) return steps;
-    steps = std::max(steps, (kContactSubsteps + intervals - 1) / intervals);
+    steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * interval / double(params_.dt) - 1e-9)));
     ContactSettings settings;
     settings.dt = interval;
     settings.substeps = steps;
     settings.gravity = Vec3d(params_.gravity);
     settings.exact_turn = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
     // As for particles at the ground: impacts slower than two ticks' worth of gravity are
-    // resting contact.
-    settings.bounce_speed = 2.0 * length(Vec3d(params_.gravity)) * double(params_.dt);
+    // resting contact; without gravity, slower than 1 cm/s (else rounding in a push apart would
+    // count as an impact, and a bouncing contact is not relaxed: the push would stay in it).
+    settings.bounce_speed = std::max(2.0 * length(Vec3d(params_.gravity)) * double(params_.dt), kRestingSpeed);
     solver_->prepare(contacts_, previous_contacts_, contact_world(), settings);
     return steps;
 }
 
-// How many times contacts are found in a tick: once, or for a body turning fast enough to turn
-// more than kMaxContactTurn in a tick, once in every part of the tick in which none does. The
+// How many times contacts must be found over `time`: once, or for a body turning fast enough to
+// turn more than kMaxContactTurn in that time, once for every part of it in which none does. The
 // solver takes each body's anchors, normal and inertia where its contacts were found; a thin
 // plank tumbling at 20 rad/s turns 0.4 rad in a tick, by which its inertia in world axes and
 // its corners have moved on, and impulses found for where it was would no longer stop it (and
 // could throw it). Balls are left out: turning changes neither their shape nor their inertia.
-int World::contact_intervals() const {
+int World::contact_intervals(double time) const {
     double fastest = 0.0;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         if (!rigid_[b].fixed && rigid_[b].shape != ShapeKind::Sphere) fastest = std::max(fastest, length(rigid_motion(b).omega));
     }
-    const double needed = std::ceil(double(params_.dt) * fastest / kMaxContactTurn);
-    return needed >= double(kMaxRotationSubsteps) ? kMaxRotationSubsteps : std::max(1, int(needed));
+    const double needed = std::ceil(time * fastest / kMaxContactTurn);
+    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
+    return needed >= most ? int(most) : std::max(1, int(needed));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -528,24 +538,31 @@ void World::tick() {
     // or once in each of several intervals when a body turns fast (contact_intervals). The
     // first are found before the particles' last tick is forgotten: how far they went then
     // says how far they may go now.
-    int substeps = substeps_;
-    if (params_.auto_substeps) substeps = std::max(substeps, rotation_substeps());
+    // The tick runs in parts, each planned from the state it starts in: usually one part of the
+    // whole tick; while a body turns fast, parts of one substep, so that a body set spinning by
+    // an impact in the middle of a tick has its substeps and contacts follow it at once.
     contact_energy_ = {};
     tick_substeps_ = 0;
-    int intervals = 1;
-    for (int i = 0; i < intervals; ++i) {
-        const double interval = double(params_.dt) / double(intervals);
-        int steps = (substeps + intervals - 1) / intervals;
+    const double dt = params_.dt;
+    double left = dt;
+    for (bool first = true; left > 1e-9 * dt; first = false) {
+        const double part = left / dt;
+        int steps = std::max(1, int(std::ceil(double(substeps_) * part - 1e-9)));
+        if (params_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
+        double span = left;
         if (!rigid_.empty()) {
-            steps = begin_contacts(interval, steps, intervals, false);
-            // Contacts, and a body turning fast: found again at every substep (nothing within
-            // reach of the whole tick means nothing to find in any part of it).
-            if (i == 0 && !contacts_.empty() && contact_intervals() > 1) {
-                intervals = std::max({contact_intervals(), substeps, kContactSubsteps});
-                steps = begin_contacts(double(params_.dt) / double(intervals), (substeps + intervals - 1) / intervals, intervals, true);
+            // Contacts within reach of the rest of the tick; while a body turns fast, solved
+            // over one substep only (and found again, from where it leaves the bodies, for the
+            // next).
+            find_contacts(left);
+            const int turns = contacts_.empty() ? 1 : contact_intervals(left);
+            if (turns > 1) {
+                span = left / double(std::max(turns, steps));
+                steps = 1;
             }
+            steps = begin_contacts(span, steps);
         }
-        if (i == 0) {
+        if (first) {
             for (SoftBody& body : soft_) {
                 copy(body.x, body.x_tick_prev);
                 copy(body.x, body.x_good);
@@ -554,7 +571,7 @@ void World::tick() {
                 body.verlet_h_good = body.verlet_h;
             }
         }
-        const float h = float(double(params_.dt) / double(intervals) / double(steps));
+        const float h = float(span / double(steps));
         for (int s = 0; s < steps; ++s) step(h);
         tick_substeps_ += steps;
         if (!contacts_.empty()) {
@@ -562,6 +579,7 @@ void World::tick() {
             contact_energy_.total += solver_->energy().total;
             contact_energy_.restitution += solver_->energy().restitution;
         }
+        left -= span;
     }
     ++ticks_;
     // Listing 9: every few ticks, bring each quaternion back to unit length.

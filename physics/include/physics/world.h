@@ -237,9 +237,10 @@ private:
     void resolve_links(const std::vector<SpringDef>& springs);
     void update_substeps();
     void step(float h);
-    int rotation_substeps() const;
-    int begin_contacts(double interval, int steps, int intervals, bool again);
-    int contact_intervals() const;
+    int rotation_substeps(double time) const;
+    void find_contacts(double reach);
+    int begin_contacts(double interval, int steps);
+    int contact_intervals(double time) const;
     ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
