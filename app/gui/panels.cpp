@@ -512,9 +512,12 @@ void Panels::mesh(Demo& demo) {
         if (body.reduced) {
             ImGui::Text("%zu vertices, simulated on %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
             if (ImGui::IsItemHovered()) {
-                ImGui::SetTooltip("Above max_particles (%d): the %zu distinct positions follow %zu particles chosen over\n"
+                // max_particles all (0) is capped too: no body runs on more than kMaxParticles.
+                const bool all = body.params.max_particles == 0;
+                ImGui::SetTooltip("Above %s (%zu): the %zu distinct positions follow %zu particles chosen over\n"
                                   "the body (skinning); each weighs %.3g particles' mass, k and c as much again.",
-                                  body.params.max_particles, mesh.particle_count(), world.particle_count(),
+                                  all ? "the cap on max_particles=all" : "max_particles",
+                                  all ? kMaxParticles : std::size_t(body.params.max_particles), mesh.particle_count(), world.particle_count(),
                                   double(mesh.particle_count()) / double(world.particle_count()));
             }
         } else {

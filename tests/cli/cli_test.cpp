@@ -124,6 +124,24 @@ TEST(Simulate, SecondsCountTicksOfDt) {
     EXPECT_EQ(json::parse(r.out).at("ticks"), 50);
 }
 
+// max_particles=all promises a particle per vertex; above the cap (20,000) the run goes on, on
+// at most that many, and one line on stderr says the cap, the particles used and how to ask
+// for fewer. The default budget (a number, 3,000) reduces as documented, without a note.
+TEST(Simulate, MaxParticlesAllAboveTheCapSaysSoInOneLine) {
+    const Result r = run({"simulate", "--mesh", "cloud:20500", "--set", "max_particles=all", "--ticks", "0"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("vertices"), 20500);
+    const int particles = j.at("particles");
+    EXPECT_LE(particles, 20000);
+    EXPECT_EQ(r.err, "softbody: note: cloud:20500: max_particles=all is capped at 20000 particles: its 20500 distinct vertices "
+                     "run on " + std::to_string(particles) + " (--set max_particles=N, 4 to 20000, for fewer)\n");
+    const Result budget = run({"simulate", "--mesh", "cloud:20500", "--ticks", "0"});
+    ASSERT_EQ(budget.exit_code, 0) << describe(budget);
+    EXPECT_LE(json::parse(budget.out).at("particles").get<int>(), 3000);
+    EXPECT_EQ(budget.err, "");
+}
+
 // --- The CSV dump ---------------------------------------------------------------------------
 
 TEST(Simulate, DumpWritesCsvEveryKTicksFromTickZero) {
