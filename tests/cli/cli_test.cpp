@@ -235,6 +235,22 @@ TEST(Simulate, RigidBodiesAreReportedWithMomentumAndInertia) {
     EXPECT_NEAR(j.at("angular_momentum")[2].get<double>(), 5.0, 1e-12);
 }
 
+// min_z is the lowest point of any body's shape: boxes and balls settled in their bin report
+// the ground (to the millimetre the contacts let bodies sink), not the walls' bounding spheres
+// (-0.63 m), and a box turned 45 degrees about x its lowest edge, 2 - sqrt(1/2) m.
+TEST(Simulate, MinZIsTheLowestPointOfAnyBodysShape) {
+    const Result pile = run({"simulate", "--scene", "boxes:30", "--seconds", "3"});
+    ASSERT_EQ(pile.exit_code, 0) << describe(pile);
+    EXPECT_NEAR(json::parse(pile.out).at("min_z").get<double>(), 0.0, 1e-3);
+    TempDir dir;
+    const std::string scene = dir.write("tilted.json", "{\"gravity\": [0, 0, 0], \"rigid_bodies\": [{\"name\": \"cube\", "
+                                                       "\"shape\": \"box\", \"size\": [1, 1, 1], \"position\": [0, 0, 2], "
+                                                       "\"rotation\": [45, 0, 0]}]}");
+    const Result tilted = run({"simulate", "--scene", scene, "--ticks", "0"});
+    ASSERT_EQ(tilted.exit_code, 0) << describe(tilted);
+    EXPECT_NEAR(json::parse(tilted.out).at("min_z").get<double>(), 2.0 - std::sqrt(0.5), 1e-6);
+}
+
 TEST(Simulate, DumpBodiesWritesEveryRigidBodyEveryKTicks) {
     TempDir dir;
     const std::string scene = dir.write("box.json", kThrownBox);

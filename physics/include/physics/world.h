@@ -200,7 +200,7 @@ public:
     // --- Diagnostics (energy.cpp, stability.cpp) ----------------------------------------------
     Energy energy();
     Vec3 center_of_mass() const;  // of the first soft body
-    float min_z() const;          // of the first soft body
+    float min_z() const;          // the lowest point of any body: particle, sphere or hull vertex
     Stability stability() const;  // the least stable soft body's
     int substeps_in_use() const { return substeps_; }
     std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v, and every rigid state
