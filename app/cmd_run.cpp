@@ -249,6 +249,9 @@ int run_command(int argc, char** argv, int first) {
         for (const ComparedWorld& c : demo->compared()) worlds.push_back(entry(*c.world));
         out["compared"] = worlds;
     }
+    // The view: whether the camera follows the bodies, and where it looks now.
+    out["camera"] = {{"follow", demo->follow},
+                     {"target", {demo->camera.target.x, demo->camera.target.y, demo->camera.target.z}}};
     // The timeline: what the record holds.
     const History& history = demo->history();
     out["history"] = {{"oldest_tick", history.oldest_tick()}, {"newest_tick", history.newest_tick()},

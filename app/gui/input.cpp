@@ -57,7 +57,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             } else if (drag_ == Drag::Pan) {
                 // One pixel moves the target by the width a pixel covers at the target.
                 const float metres_per_pixel = 2.0f * demo.camera.distance * std::tan(0.5f * demo.camera.fov_y) / height;
-                demo.camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+                demo.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
             }
             break;
         }
@@ -81,6 +81,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                 case GLFW_KEY_COMMA: demo.step_back(); break;
                 case GLFW_KEY_R: demo.reset(); break;
                 case GLFW_KEY_F: demo.frame_body(); break;
+                case GLFW_KEY_T: demo.follow = !demo.follow; break;
                 case GLFW_KEY_P: demo.overlays.particles = !demo.overlays.particles; break;
                 case GLFW_KEY_S: demo.overlays.springs = !demo.overlays.springs; break;
                 case GLFW_KEY_C: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;

@@ -727,7 +727,11 @@ void Panels::display(Demo& demo) {
     ImGui::Checkbox("springs between bodies", &o.links);
     ImGui::Checkbox("ground and grid", &a.ground);
     ImGui::SameLine(180 * scale_);
-    ImGui::Checkbox("follow body", &demo.follow);
+    ImGui::Checkbox("follow the bodies (T)", &demo.follow);
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("The camera moves with the bodies' centre, smoothed and level, keeping them where they are in\n"
+                          "the view (pan to move them; it holds still while you pull a body). On for a scene with one body.");
+    }
     int style = static_cast<int>(a.body);
     if (ImGui::Combo("body", &style, "solid\0ghost (see-through)\0wireframe\0hidden\0")) a.body = static_cast<render::BodyStyle>(style);
     ImGui::ColorEdit3("colour", &a.body_color.x, ImGuiColorEditFlags_NoInputs);
@@ -782,6 +786,7 @@ void Panels::help() {
         {"middle-drag, ctrl + right-drag", "pan"},
         {"wheel", "zoom"},
         {"F", "frame the body"},
+        {"T", "camera follows the bodies / stays"},
         {"Space", "pause / play"},
         {"N or .", "one tick"},
         {",", "one tick back (the timeline keeps the last 20 s)"},

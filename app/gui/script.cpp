@@ -19,7 +19,7 @@ namespace {
 const std::map<std::string, int>& key_names() {
     static const std::map<std::string, int> keys = {
         {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"comma", GLFW_KEY_COMMA}, {"r", GLFW_KEY_R},
-        {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
+        {"f", GLFW_KEY_F}, {"t", GLFW_KEY_T}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
         {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"m", GLFW_KEY_M}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
     };
     return keys;

@@ -88,6 +88,38 @@ TEST(App, StartsAndShowsTheSceneAndPanels) {
     EXPECT_GT(brightness(780, 20), 150) << "no sky at the top right";
 }
 
+// The default ball, left alone, rolls 2.5 m from where it fell; the camera follows it (on by
+// default for a scene with one body): after 30 s its target has moved as the ball's centre did,
+// level, to the smoothing's lag (0.4 s behind a ball all but at rest), so the ball stays where
+// the first framing put it in the view. With T pressed at the start the camera stays put, and
+// a scene of several bodies starts without following.
+TEST(App, CameraFollowsTheDefaultBall) {
+    const std::string common = "--size 480x300 --frames 600 --frame-time 0.05";  // 30 s
+    const Result followed = run_app(common);
+    const Result stayed = run_app(common + " --script " + quote(write_script("follow_off.script", "0 key t\n").string()));
+    ASSERT_EQ(followed.exit_code, 0) << followed.err;
+    ASSERT_EQ(stayed.exit_code, 0) << stayed.err;
+    EXPECT_TRUE(followed.summary["camera"]["follow"].get<bool>());
+    EXPECT_FALSE(stayed.summary["camera"]["follow"].get<bool>());
+    // The same run either way (the camera does not touch the physics): the ball rolled away.
+    EXPECT_EQ(followed.summary["state_hash"], stayed.summary["state_hash"]);
+    const auto& com = followed.summary["com"];
+    const double rolled = std::hypot(com[0].get<double>(), com[1].get<double>());  // it fell at x = y = 0
+    EXPECT_GT(rolled, 2.0) << followed.out;
+    // The camera that stayed is where the framing put it at the start: the follow moved the
+    // other by the ball's way, and not up or down.
+    const auto& moved = followed.summary["camera"]["target"];
+    const auto& start = stayed.summary["camera"]["target"];
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_NEAR(moved[k].get<double>() - start[k].get<double>(), com[k].get<double>(), 0.05) << "axis " << k;
+    }
+    EXPECT_EQ(moved[2].get<double>(), start[2].get<double>());
+
+    const Result pile = run_app("--scene pile:5 --size 480x300 --frames 2");
+    ASSERT_EQ(pile.exit_code, 0) << pile.err;
+    EXPECT_FALSE(pile.summary["camera"]["follow"].get<bool>());
+}
+
 TEST(App, DraggingTheBodyLiftsIt) {
     // Grab the resting sphere from above its middle and pull it up and to the left.
     const fs::path script = write_script("drag.script",
