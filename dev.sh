@@ -14,7 +14,7 @@ cd "$(dirname "$0")"
 PACKAGES=(
   cmake g++ pkg-config
   libglfw3-dev libglm-dev libimgui-dev libosmesa6-dev libtinyobjloader-dev python3-glad libstb-dev
-  nlohmann-json3-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   ffmpeg
 )

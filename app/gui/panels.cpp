@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "cli.h"
+#include "gui/bindings.h"
 #include "gui/demo.h"
 #include "gui/recorder.h"
 #include "physics/pair_forces.h"
@@ -779,32 +780,17 @@ void Panels::help() {
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x * 0.5f, viewport->WorkPos.y + viewport->WorkSize.y * 0.5f),
                             ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     ImGui::Begin("Controls", &show_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-    const char* rows[][2] = {
-        {"left-drag on a body", "grab a particle (or a rigid body's point) and pull it"},
-        {"shift + left-click", "pin or free a particle"},
-        {"left/right-drag", "orbit the camera"},
-        {"middle-drag, ctrl + right-drag", "pan"},
-        {"wheel", "zoom"},
-        {"F", "frame the body"},
-        {"T", "camera follows the bodies / stays"},
-        {"Space", "pause / play"},
-        {"N or .", "one tick"},
-        {",", "one tick back (the timeline keeps the last 20 s)"},
-        {"R", "reset"},
-        {"M", "record the view into a video / stop"},
-        {"P  S  C  V  W", "particles, springs, centre of mass, velocities, omega and L"},
-        {"Tab", "hide / show the panels"},
-        {"H, F1 / Esc", "this help / close it"},
-        {"drop a file", "load an .obj or .off mesh"},
-    };
-    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
-        for (const auto& row : rows) {
+    // The mouse and every key, from the one list the controls use (gui/bindings.cpp).
+    if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
+        const auto row = [](const char* left, const char* right) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(row[0]);
+            ImGui::TextUnformatted(left);
             ImGui::TableSetColumnIndex(1);
-            ImGui::TextUnformatted(row[1]);
-        }
+            ImGui::TextUnformatted(right);
+        };
+        for (const MouseBinding& m : mouse_bindings()) row(m.gesture, m.what);
+        for (const KeyBinding& k : key_bindings()) row(k.label, k.what);
         ImGui::EndTable();
     }
     ImGui::End();

@@ -120,6 +120,37 @@ TEST(App, CameraFollowsTheDefaultBall) {
     EXPECT_FALSE(pile.summary["camera"]["follow"].get<bool>());
 }
 
+// `softbody run --help` lists its options, the mouse and every key, each with what it does (the
+// same list the help overlay shows: gui/bindings.cpp), and opens no window.
+TEST(App, RunHelpListsTheOptionsTheMouseAndEveryKey) {
+    FILE* pipe = ::popen((std::string(SOFTBODY_EXE) + " run --help 2>&1").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string help;
+    std::array<char, 4096> buffer;
+    while (std::fgets(buffer.data(), buffer.size(), pipe)) help += buffer.data();
+    const int status = ::pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << help;
+    for (const char* option : {"--scene FILE", "--mesh FILE", "--set KEY=VALUE", "--size WxH", "--frames N", "--frame-time S",
+                               "--script FILE", "--screenshot FILE.png"}) {
+        EXPECT_NE(help.find("\n  " + std::string(option) + " "), std::string::npos) << option << " missing:\n" << help;
+    }
+    const auto mouse = help.find("\nMouse"), keys = help.find("\nKeys:\n");
+    ASSERT_NE(mouse, std::string::npos) << help;
+    ASSERT_NE(keys, std::string::npos) << help;
+    for (const char* gesture : {"left-drag on a body", "shift + left-click", "ctrl + left-click", "right-drag", "middle-drag", "wheel",
+                                "drop a file"}) {
+        EXPECT_NE(help.find(gesture, mouse), std::string::npos) << gesture << " missing:\n" << help;
+    }
+    // Every key the controls act on, each on its own line with what it does.
+    for (const char* key : {"Space", "N or .", ", (comma)", "R", "F", "T", "P", "S", "C", "V", "W", "M", "Tab", "H or F1", "Esc"}) {
+        const auto at = help.find("\n  " + std::string(key) + " ", keys);
+        ASSERT_NE(at, std::string::npos) << "key " << key << " missing:\n" << help.substr(keys);
+        const std::string line = help.substr(at + 1, help.find('\n', at + 1) - at - 1);
+        EXPECT_GT(line.find_first_not_of(' ', 2 + std::string(key).size()), 12u) << line;
+        EXPECT_GT(line.size(), 30u) << "says nothing: " << line;
+    }
+}
+
 TEST(App, DraggingTheBodyLiftsIt) {
     // Grab the resting sphere from above its middle and pull it up and to the left.
     const fs::path script = write_script("drag.script",

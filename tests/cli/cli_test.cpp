@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -398,6 +400,87 @@ TEST(Simulate, SameStateHashAtOneAndTwoThreads) {
     EXPECT_EQ(ja.at("particles"), 550);
     EXPECT_EQ(ja.at("state_hash"), jb.at("state_hash"));
     EXPECT_EQ(ja.at("state_hash"), json::parse(again.out).at("state_hash"));
+}
+
+// --- Help -------------------------------------------------------------------------------------
+
+// The options of a command's --help: each line of an options section (a line starting "  -"),
+// split into the option with its value's name and what it says.
+struct HelpLine {
+    std::string option, text;
+};
+std::vector<HelpLine> option_lines(const std::string& help, std::vector<std::string>& loose) {
+    std::vector<HelpLine> lines;
+    std::istringstream in(help);
+    std::string line;
+    bool in_options = false;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        if (line.back() == ':' && line[0] != ' ') {  // a section's title: "Options:", "Camera and look:"
+            in_options = line.rfind("Exit codes", 0) != 0;
+            continue;
+        }
+        if (!in_options) continue;
+        if (line.rfind("  -", 0) != 0) {
+            loose.push_back(line);  // a line that is no option's: a description run onto its own line
+            continue;
+        }
+        const auto gap = line.find("  ", 2);
+        const auto text = gap == std::string::npos ? std::string::npos : line.find_first_not_of(' ', gap);
+        lines.push_back({line.substr(2, gap == std::string::npos ? std::string::npos : gap - 2),
+                         text == std::string::npos ? "" : line.substr(text)});
+    }
+    return lines;
+}
+
+// Every command's --help: exit 0, each option on one line of its own saying what it does, and
+// each option that takes a value its default (or that it is required); the exit codes.
+TEST(Help, EveryCommandGivesEachOptionOneLineWithItsDefault) {
+    for (const std::string command : {"simulate", "render", "bench", "lessons"}) {
+        SCOPED_TRACE("softbody " + command + " --help");
+        const Result r = run({command, "--help"});
+        if (command == "render" && r.exit_code == 2 && r.err.find("without the renderer") != std::string::npos) continue;
+        ASSERT_EQ(r.exit_code, 0) << describe(r);
+        EXPECT_EQ(r.err, "");
+        EXPECT_EQ(r.out.rfind("Usage: softbody " + command + " [OPTIONS]"), r.out.find("Usage:")) << r.out;
+        std::vector<std::string> loose;
+        const std::vector<HelpLine> options = option_lines(r.out, loose);
+        EXPECT_GE(options.size(), 2u) << r.out;
+        EXPECT_TRUE(loose.empty()) << "not on its option's line: " << (loose.empty() ? "" : loose[0]);
+        for (const HelpLine& o : options) {
+            EXPECT_GE(o.text.size(), 8u) << "says nothing: " << o.option;
+            const bool takes_value = o.option.find(' ') != std::string::npos && o.option.rfind("-h,", 0) != 0;
+            if (takes_value) {
+                EXPECT_TRUE(o.text.find("default") != std::string::npos || o.text.find("required") != std::string::npos)
+                    << o.option << ": no default in '" << o.text << "'";
+            }
+        }
+        EXPECT_NE(r.out.find("Exit codes:\n  0  done\n  2  bad input"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("\n  4  "), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("\n  3  ") != std::string::npos, command == "simulate" || command == "render") << r.out;
+    }
+}
+
+// simulate's help says what the options the issue asked about do: what --dump writes, the
+// thread count it defaults to, and the exit codes 0, 2, 3 and 4.
+TEST(Help, SimulateSaysWhatDumpWritesTheThreadsAndTheExitCodes) {
+    const Result r = run({"simulate", "--help"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    std::vector<std::string> loose;
+    std::map<std::string, std::string> text;
+    for (const HelpLine& o : option_lines(r.out, loose)) text[o.option.substr(0, o.option.find(' '))] = o.text;
+    for (const char* option : {"--scene", "--mesh", "--set", "--seconds", "--ticks", "--dump", "--dump-bodies", "--dump-every",
+                               "--threads"}) {
+        EXPECT_TRUE(text.count(option)) << option << " is not listed:\n" << r.out;
+    }
+    EXPECT_NE(text["--dump"].find("tick,time,particle,x,y,z,vx,vy,vz"), std::string::npos) << text["--dump"];
+    EXPECT_NE(text["--dump-bodies"].find("tick,time,body,x,y,z"), std::string::npos) << text["--dump-bodies"];
+    const auto at = text["--threads"].find("default ");
+    ASSERT_NE(at, std::string::npos) << text["--threads"];
+    EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(text["--threads"][at + 8]))) << text["--threads"];
+    for (const char* code : {"\n  0  done", "\n  2  bad input", "\n  3  the simulation diverged", "\n  4  "}) {
+        EXPECT_NE(r.out.find(code), std::string::npos) << code << "\n" << r.out;
+    }
 }
 
 }  // namespace
