@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The two commands of README.md, each complete on its own on a fresh Debian 12 machine:
-#   ./dev.sh demo   install what is missing, build, open the interactive demo
+#   ./dev.sh demo   install what is missing, build the app (not the tests), open the interactive demo
 #   ./dev.sh test   install what is missing, build, run every test; then the unit, kernel and CLI
 #                   tests again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/),
 #                   and a fixed set of inputs to each fuzz target (clang, build-fuzz/)
-#   ./dev.sh soak   install, build, run the demo for 20,000 scripted frames (virtual display)
+#   ./dev.sh soak   install, build the app, run the demo for 20,000 scripted frames (virtual display)
 # Everything comes from Debian's packages; nothing is downloaded from anywhere else.
 # ffmpeg is for videos: the app's Record button and `softbody render --video` run it (found at run
 # time; without it they write PNG frames), and the video tests read the clips back with ffprobe.
@@ -14,7 +14,7 @@ cd "$(dirname "$0")"
 PACKAGES=(
   cmake g++ pkg-config
   libglfw3-dev libglm-dev libimgui-dev libosmesa6-dev libtinyobjloader-dev python3-glad libstb-dev
-  nlohmann-json3-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   ffmpeg
 )
@@ -36,9 +36,11 @@ install_missing() {
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}"
 }
 
+# Every target with no argument (the tests too); with one, that target and what it needs: the
+# demo builds only the app, so the first window does not wait for the tests to compile.
 build() {
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
-  cmake --build "$BUILD_DIR" -j"$JOBS"
+  cmake --build "$BUILD_DIR" -j"$JOBS" ${1:+--target "$1"}
 }
 
 # The unit, kernel, CLI and fuzz-regression tests again under AddressSanitizer and
@@ -90,7 +92,7 @@ fuzz_smoke() {
 case "${1:-}" in
   demo)
     install_missing
-    build
+    build softbody
     shift
     if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
       echo "dev.sh: no display to open a window on; run this from a desktop session" >&2
@@ -110,7 +112,7 @@ case "${1:-}" in
     # Everything a user does, for 20,000 frames, in one process; memory is reported at frame
     # 100 and at the end (the JSON line's memory_kib).
     install_missing
-    build
+    build softbody
     frames=${SOAK_FRAMES:-20000}
     runner=()
     if [ -z "${DISPLAY:-}" ]; then runner=(xvfb-run -a -s "-screen 0 1280x800x24"); fi

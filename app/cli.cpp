@@ -1,73 +1,136 @@
 #include "cli.h"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 #include "physics/error.h"
 #include "physics/scene_io.h"
 
 namespace softbody::app {
 
-Args::Args(int argc, char** argv, int first) {
-    for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);
-}
-
-std::string_view Args::value(std::string_view option) {
-    if (done()) throw UsageError(std::string(option) + " needs a value");
-    return next();
-}
-
 namespace {
+
 // The shortest text that reads back as the same number: 1, 1000, 0.0001, 1e+07.
 std::string shortest(double value) {
     char text[32];
     const auto result = std::to_chars(text, text + sizeof text, value);
     return std::string(text, result.ptr);
 }
-}  // namespace
 
-double parse_double(std::string_view option, std::string_view text, double min, double max) {
+// What is wrong with `text` as a number from min to max, or "" when nothing is.
+std::string number_problem(std::string_view text, double min, double max) {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
-        value < min || value > max) {
-        throw UsageError(std::string(option) + ": expected a number from " + shortest(min) + " to " + shortest(max) +
-                         ", got '" + std::string(text) + "'");
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value < min ||
+        value > max) {
+        return "expected a number from " + shortest(min) + " to " + shortest(max) + ", got '" + std::string(text) + "'";
     }
+    return "";
+}
+
+std::string whole_problem(std::string_view text, std::int64_t min, std::int64_t max) {
+    std::int64_t value = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
+        return "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max) + ", got '" +
+               std::string(text) + "'";
+    }
+    return "";
+}
+
+// A check that CLI11 runs on the text before converting it; its message follows "OPTION: ".
+CLI::Validator check(std::function<std::string(const std::string&)> problem) {
+    return CLI::Validator([problem = std::move(problem)](std::string& text) { return problem(text); }, "", "");
+}
+
+}  // namespace
+
+void configure(CLI::App& app) {
+    app.get_formatter()->column_width(28);
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.set_help_flag("-h,--help", "print this help and exit");
+}
+
+bool parse(CLI::App& app, int argc, char** argv, int first) {
+    // CLI11 takes the arguments last first.
+    std::vector<std::string> args(argv + std::min(first, argc), argv + argc);
+    std::reverse(args.begin(), args.end());
+    try {
+        app.parse(args);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return false;
+    } catch (const CLI::ParseError& e) {
+        throw UsageError(e.what());
+    }
+    return true;
+}
+
+CLI::Option* add_number(CLI::App& app, const std::string& name, double& value, double min, double max,
+                        const std::string& help) {
+    return app.add_option(name, value, help)
+        ->type_name("X")
+        ->check(check([min, max](const std::string& text) { return number_problem(text, min, max); }));
+}
+
+CLI::Option* add_whole(CLI::App& app, const std::string& name, std::int64_t& value, std::int64_t min, std::int64_t max,
+                       const std::string& help) {
+    return app.add_option(name, value, help)
+        ->type_name("N")
+        ->check(check([min, max](const std::string& text) { return whole_problem(text, min, max); }));
+}
+
+CLI::Option* add_whole(CLI::App& app, const std::string& name, int& value, std::int64_t min, std::int64_t max,
+                       const std::string& help) {
+    return app.add_option(name, value, help)
+        ->type_name("N")
+        ->check(check([min, max](const std::string& text) { return whole_problem(text, min, max); }));
+}
+
+double parse_double(std::string_view option, std::string_view text, double min, double max) {
+    if (std::string problem = number_problem(text, min, max); !problem.empty()) {
+        throw UsageError(std::string(option) + ": " + problem);
+    }
+    double value = 0.0;
+    std::from_chars(text.data(), text.data() + text.size(), value);
     return value;
 }
 
 std::int64_t parse_int(std::string_view option, std::string_view text, std::int64_t min, std::int64_t max) {
-    std::int64_t value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
-        throw UsageError(std::string(option) + ": expected a whole number from " + std::to_string(min) + " to " +
-                         std::to_string(max) + ", got '" + std::string(text) + "'");
+    if (std::string problem = whole_problem(text, min, max); !problem.empty()) {
+        throw UsageError(std::string(option) + ": " + problem);
     }
+    std::int64_t value = 0;
+    std::from_chars(text.data(), text.data() + text.size(), value);
     return value;
 }
 
-bool SceneOptions::take(Args& args) {
-    const std::string_view option = args.peek();
-    if (option == "--scene") {
-        args.next();
-        scene = args.value(option);
-    } else if (option == "--mesh") {
-        args.next();
-        mesh = args.value(option);
-    } else if (option == "--set") {
-        args.next();
-        const std::string_view assignment = args.value(option);
-        const auto eq = assignment.find('=');
-        if (eq == std::string_view::npos || eq == 0) {
-            throw UsageError("--set: expected KEY=VALUE, got '" + std::string(assignment) + "'");
-        }
-        sets.emplace_back(std::string(assignment.substr(0, eq)), std::string(assignment.substr(eq + 1)));
-    } else {
-        return false;
-    }
-    return true;
+std::string exit_codes_help(bool can_diverge) {
+    return std::string("Exit codes:\n"
+                       "  0  done\n"
+                       "  2  bad input: one line on stderr names the option, file or key\n") +
+           (can_diverge ? "  3  the simulation diverged: stderr says which limit it crossed and what to change\n" : "") +
+           "  4  anything else failed (out of memory, a write, a program it runs)";
+}
+
+void SceneOptions::add_to(CLI::App& app) {
+    app.add_option("--scene", scene, "scene file (JSON) or a generated one, pile:100 (default assets/scenes/default.json)")
+        ->type_name("FILE");
+    app.add_option("--mesh", mesh, "mesh (.obj, .off or cloud:N), sized to 1 m and stood up (default: the scene's)")
+        ->type_name("FILE");
+    app.add_option("--set", sets, "a key over the scene's (NAME.KEY=VALUE: a named body's); repeatable (default: none)")
+        ->type_name("KEY=VALUE")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->check(check([](const std::string& text) {
+            const auto eq = text.find('=');
+            return eq == std::string::npos || eq == 0 ? "expected KEY=VALUE, got '" + text + "'" : std::string();
+        }));
 }
 
 Scene SceneOptions::resolve() const {
@@ -80,7 +143,10 @@ Scene SceneOptions::resolve() const {
         resolved.params.mesh = mesh;
         fit_brought_mesh(resolved.params);
     }
-    for (const auto& [key, value] : sets) set_scene_key(resolved, key, value);
+    for (const std::string& assignment : sets) {
+        const auto eq = assignment.find('=');
+        set_scene_key(resolved, assignment.substr(0, eq), assignment.substr(eq + 1));
+    }
     if (resolved.empty()) {
         throw InputError("nothing to simulate: give --mesh FILE, or a scene file with a \"mesh\", \"soft_bodies\" or "
                          "\"rigid_bodies\"");

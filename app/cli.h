@@ -1,5 +1,7 @@
-// What every subcommand shares: the scene options (--scene, --mesh, --set), exit codes, and
-// a small argument reader that reports problems as one line naming the option.
+// What every subcommand shares: the scene options (--scene, --mesh, --set), the exit codes, and
+// reading the command line. Options are declared with CLI11 (Debian's libcli11-dev), once each
+// with a line of help: --help, the checks and the one-line errors all come from that
+// declaration. Only the commands' own files include <CLI/CLI.hpp>; this header names it.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +13,11 @@
 #include "physics/params.h"
 #include "physics/scene_io.h"
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace softbody::app {
 
 enum Exit : int { kOk = 0, kBadInput = 2, kDiverged = 3, kRuntimeFailure = 4 };
@@ -20,22 +27,30 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-class Args {
-public:
-    Args(int argc, char** argv, int first);
-    bool done() const { return at_ >= args_.size(); }
-    std::string_view peek() const { return args_[at_]; }
-    std::string_view next() { return args_[at_++]; }
-    // The value after an option such as --ticks; a usage error if it is missing.
-    std::string_view value(std::string_view option);
+// The lay-out every subcommand's help shares (options a line each, their help in one column)
+// and the policies its options share (an option given twice: the last one counts).
+void configure(CLI::App& app);
 
-private:
-    std::vector<std::string_view> args_;
-    std::size_t at_ = 0;
-};
+// Reads argv[first..] into the app's options. False when --help (or -h) was asked for: the help
+// has been printed on stdout, and the command exits 0. A mistake throws UsageError with one
+// line naming the option ("--ticks: expected a whole number from 0 to 1000000000, got 'ten'").
+bool parse(CLI::App& app, int argc, char** argv, int first);
 
+// An option taking a number from min to max (a whole number for the integer ones); anything
+// else is refused as "OPTION: expected a number from MIN to MAX, got 'TEXT'".
+CLI::Option* add_number(CLI::App& app, const std::string& name, double& value, double min, double max,
+                        const std::string& help);
+CLI::Option* add_whole(CLI::App& app, const std::string& name, std::int64_t& value, std::int64_t min, std::int64_t max,
+                       const std::string& help);
+CLI::Option* add_whole(CLI::App& app, const std::string& name, int& value, std::int64_t min, std::int64_t max,
+                       const std::string& help);
+
+// The same checks for a value inside a longer one (--size WxH, --at T1,T2, --camera yaw=30).
 double parse_double(std::string_view option, std::string_view text, double min, double max);
 std::int64_t parse_int(std::string_view option, std::string_view text, std::int64_t min, std::int64_t max);
+
+// The exit codes, for a command's help: 0, 2 and 4 always; 3 where a run can diverge.
+std::string exit_codes_help(bool can_diverge);
 
 // --scene FILE, --mesh FILE and --set KEY=VALUE (or NAME.KEY=VALUE for a named body), applied
 // in that order whatever their order on the command line (the scene is the base, --mesh and
@@ -43,10 +58,10 @@ std::int64_t parse_int(std::string_view option, std::string_view text, std::int6
 struct SceneOptions {
     std::string scene;
     std::string mesh;
-    std::vector<std::pair<std::string, std::string>> sets;
+    std::vector<std::string> sets;  // KEY=VALUE each, checked as they are read
 
-    // Consumes the option at args.peek() if it is one of ours; returns false otherwise.
-    bool take(Args& args);
+    // Declares the three options on app.
+    void add_to(CLI::App& app);
     // Builds the scene: the default scene when neither --scene nor --mesh is given.
     Scene resolve() const;
     // Name for output files: the scene's file stem, else the mesh's.

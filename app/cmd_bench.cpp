@@ -17,6 +17,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -44,26 +46,6 @@
 namespace softbody::app {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: softbody bench [--quick] [--json] [--sizes N,N,...] [--seconds S] [--threads N]\n"
-    "                      [--baseline-max N] [--reference-max N] [--no-kernels] [--no-meshes] [--no-bodies]\n"
-    "                      [--no-search]\n"
-    "  --quick           a few seconds: small sizes, short measurements (for CI)\n"
-    "  --json            print one JSON object instead of the tables\n"
-    "  --sizes           cloud sizes, as cloud:N scenes (default 500,1000,2500,5000,10000; --quick\n"
-    "                    500,1000,2500)\n"
-    "  --seconds         wall time to spend on each measurement (default 1; --quick 0.15)\n"
-    "  --threads         threads for the fast kernel's multi-threaded rows (default: all)\n"
-    "  --baseline-max    largest N for the baseline transcription (default 5000: its N x N\n"
-    "                    tables take 12 N^2 bytes, 1.2 GB at N = 10,000)\n"
-    "  --reference-max   largest N for the reference kernel (default 10000)\n"
-    "  --no-kernels      skip the table of the pair kernel alone (every tile variant) and the\n"
-    "                    peak probe\n"
-    "  --no-meshes       skip the bundled meshes (the scene files in assets/scenes with a soft body\n"
-    "                    and no rigid bodies)\n"
-    "  --no-bodies       skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)\n"
-    "  --no-search       skip the search for the largest real-time cloud";
 
 using Clock = std::chrono::steady_clock;
 
@@ -436,32 +418,35 @@ const char* width_of(PairKernelVariant variant) {
 }  // namespace
 
 int bench_command(int argc, char** argv) {
-    Args args(argc, argv, 2);
-    bool quick = false, json = false, meshes = true, bodies = true, search = true, kernels = true;
-    std::vector<std::size_t> sizes;
+    CLI::App app("Times the physics alone on the scenes the app opens: the CPU's peak, whole ticks of cloud:N at 1 and\n"
+                 "all threads against the reference kernel and Listing 8 transcribed, the pair kernel alone, the bundled\n"
+                 "meshes, pile:100 with and without a cloud, and the largest cloud that runs in real time (README, \"Speed\").",
+                 "softbody bench");
+    configure(app);
+    bool quick = false, json = false, no_meshes = false, no_bodies = false, no_search = false, no_kernels = false;
+    std::string sizes_text;
     double budget = -1.0;
     int threads = hardware_threads();
     std::int64_t baseline_max = -1, reference_max = -1;
-    while (!args.done()) {
-        const std::string_view option = args.next();
-        if (option == "--quick") quick = true;
-        else if (option == "--json") json = true;
-        else if (option == "--no-meshes") meshes = false;
-        else if (option == "--no-bodies") bodies = false;
-        else if (option == "--no-search") search = false;
-        else if (option == "--no-kernels") kernels = false;
-        else if (option == "--sizes") sizes = parse_sizes(args.value(option));
-        else if (option == "--seconds") budget = parse_double(option, args.value(option), 0.0, 3600.0);
-        else if (option == "--threads") threads = static_cast<int>(parse_int(option, args.value(option), 1, 256));
-        else if (option == "--baseline-max") baseline_max = parse_int(option, args.value(option), 0, 20000);
-        else if (option == "--reference-max") reference_max = parse_int(option, args.value(option), 0, 20000);
-        else if (option == "--help" || option == "-h") {
-            std::cout << kUsage << "\n";
-            return kOk;
-        } else {
-            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
-        }
-    }
+    app.add_flag("--quick", quick, "a few seconds: small sizes and short measurements (for CI)");
+    app.add_flag("--json", json, "one JSON object instead of the tables");
+    app.add_option("--sizes", sizes_text, "cloud sizes, as cloud:N scenes (default 500,1000,2500,5000,10000; --quick 500,1000,2500)")
+        ->type_name("N,N,...");
+    add_number(app, "--seconds", budget, 0.0, 3600.0, "wall time for each measurement (default 1; --quick 0.15)")->type_name("S");
+    add_whole(app, "--threads", threads, 1, 256,
+              "threads for the fast kernel's threaded rows (default " + std::to_string(threads) + ", this machine's)");
+    add_whole(app, "--baseline-max", baseline_max, 0, 20000,
+              "largest N for Listing 8 transcribed (default 5000, --quick 1000: its tables take 12 N^2 bytes)");
+    add_whole(app, "--reference-max", reference_max, 0, 20000, "largest N for the reference kernel (default 10000, --quick 1000)");
+    app.add_flag("--no-kernels", no_kernels, "skip the peak probe and the pair kernel alone (every tile variant)");
+    app.add_flag("--no-meshes", no_meshes, "skip the bundled meshes (scene files with a soft body and no rigid bodies)");
+    app.add_flag("--no-bodies", no_bodies, "skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)");
+    app.add_flag("--no-search", no_search, "skip the search for the largest cloud that runs in real time");
+    app.footer(exit_codes_help(false));
+    if (!parse(app, argc, argv, 2)) return kOk;
+    const bool meshes = !no_meshes, bodies = !no_bodies, search = !no_search, kernels = !no_kernels;
+    std::vector<std::size_t> sizes;
+    if (!sizes_text.empty()) sizes = parse_sizes(sizes_text);
     if (sizes.empty()) sizes = quick ? std::vector<std::size_t>{500, 1000, 2500} : std::vector<std::size_t>{500, 1000, 2500, 5000, 10000};
     if (budget < 0.0) budget = quick ? 0.15 : 1.0;
     if (baseline_max < 0) baseline_max = quick ? 1000 : 5000;

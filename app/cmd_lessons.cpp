@@ -1,6 +1,8 @@
 // softbody lessons: the lessons in the addendum's order (physics/lesson.h), each with its
 // number, title, scene file, the equations it is about and the first line of its text; with
 // --json, one JSON object with all of that, the whole text and the closed form it compares.
+#include <CLI/CLI.hpp>
+
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -14,28 +16,19 @@ namespace softbody::app {
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: softbody lessons [--json]\n"
-    "Lists the lessons in the addendum's order: number, title, scene file, equations, and what it shows.\n"
-    "Open one with: softbody run --scene " SOFTBODY_ASSETS_DIR "/scenes/FILE";
-
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
 }  // namespace
 
 int lessons_command(int argc, char** argv) {
-    Args args(argc, argv, 2);
+    CLI::App app("Lists the lessons in the addendum's order: number, title, scene file, equations, and what each shows.\n"
+                 "Open one with: softbody run --scene " + assets_dir() + "/scenes/FILE",
+                 "softbody lessons");
+    configure(app);
     bool as_json = false;
-    while (!args.done()) {
-        const std::string_view option = args.next();
-        if (option == "--json") as_json = true;
-        else if (option == "--help" || option == "-h") {
-            std::cout << kUsage << "\n";
-            return kOk;
-        } else {
-            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
-        }
-    }
+    app.add_flag("--json", as_json, "one JSON object instead of the text: every lesson's whole text and the closed form it compares");
+    app.footer(exit_codes_help(false));
+    if (!parse(app, argc, argv, 2)) return kOk;
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     std::size_t number = 0;
     for (const LessonInfo& lesson : lessons()) {

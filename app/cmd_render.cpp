@@ -5,6 +5,8 @@
 // (a long sequence, --frames 2000 --fps 60, is the renderer's soak: the memory must stay flat).
 //
 // softbody render --bench measures the renderer instead (see render_bench below).
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cctype>
@@ -36,36 +38,6 @@
 namespace softbody::app {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR\n"
-    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --frames N [--fps F] --out DIR\n"
-    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--frames N | --seconds T) [--fps F]\n"
-    "                       --video FILE.mp4 [--overwrite]\n"
-    "                       [--size WxH] [--camera KEY=VALUE,...] [--overlay NAME,...] [--body STYLE]\n"
-    "                       [--body-color RRGGBB] [--no-ground] [--no-shadows] [--no-pattern] [--samples N]\n"
-    "                       [--threads N]\n"
-    "       softbody render --bench [--frames N]   (streaming, normals and frame times; no files)\n"
-    "  --at        times in seconds; each is drawn between the two ticks around it\n"
-    "  --frames    N images at F per second from t = 0 (default --fps 60), DIR/<scene>_<frame>.png\n"
-    "              numbered from 0 with leading zeros (an animation's frames, in name order)\n"
-    "  --seconds   as many frames as T seconds take at F per second (instead of --frames)\n"
-    "  --out       folder for DIR/<scene>_t<time>.png (created if missing)\n"
-    "  --video     one H.264 MP4 video of the frames instead of PNGs, through ffmpeg ('sudo apt install\n"
-    "              ffmpeg'; without it the frames are PNGs in FILE_frames/ beside it); sides must be even\n"
-    "  --overwrite replace an existing video file (without it, one is never replaced)\n"
-    "  --size      image size, 16..8192 each way (default 800x600)\n"
-    "  --camera    yaw=DEG, pitch=DEG (above the horizon), fov=DEG, distance=M, zoom=FACTOR,\n"
-    "              target=X:Y:Z, follow (frame the body in every image; default: frame the\n"
-    "              start of the fall once, so every image shares one camera)\n"
-    "  --overlay   particles, springs, pins, com, velocity, forces, normals, angular (omega and L),\n"
-    "              contacts, links (springs between bodies), or none (default: pins, links)\n"
-    "  --body      solid, ghost (see-through), wireframe or hidden (default: solid)\n"
-    "  --no-pattern  a plain body, without the soft checks that show it turn\n"
-    "  --samples   multisample anti-aliasing, 1 (off) to 4 (default 4)\n"
-    "  --debug-offset DX,DY,DZ, --debug-flip-normals and --debug-particle-mesh (a reduced body's\n"
-    "              simulated particles drawn instead of its full mesh) draw deliberate faults (the screenshot\n"
-    "              tests' negative checks)";
 
 constexpr int kMinSide = 16;
 
@@ -225,89 +197,120 @@ int render_command(int argc, char** argv) {
     for (int i = 2; i < argc; ++i) {
         if (std::string_view(argv[i]) == "--bench") return render_bench(argc, argv);
     }
-    Args args(argc, argv, 2);
+    CLI::App app("Simulates from t = 0 at the fixed tick and draws it headless (OSMesa, no display): one PNG per time\n"
+                 "asked for (--at), an animation's frames (--frames, --seconds) or one H.264 video (--video). Prints a\n"
+                 "JSON line per image (time, tick, state_hash, file, memory_kib), or one for the video. Same inputs, same bytes.",
+                 "softbody render");
+    configure(app);
     SceneOptions scene;
-    std::vector<double> times;
-    long sequence_frames = 0;
-    std::optional<double> seconds;
+    scene.add_to(app);
+    std::vector<std::string> at_texts, camera_texts;
+    std::int64_t sequence_frames = 0;
+    double seconds = -1.0;
     double fps = 60.0;
-    std::string out_dir, video_path;
-    bool overwrite = false;
-    int width = 800, height = 600;
-    CameraOptions camera_options;
-    render::Frame frame;
+    std::string out_dir, video_path, size_text, overlay_text, body_style, color_text, offset_text;
+    bool overwrite = false, hide_ground = false, no_shadows = false, no_pattern = false, flip_normals = false,
+         particle_mesh = false;
+    int samples = 4;
     int threads = hardware_threads();
-    bool hide_ground = false;
-    while (!args.done()) {
-        if (scene.take(args)) continue;
-        const std::string_view option = args.next();
-        if (option == "--at") {
-            for (std::string_view t : split(args.value(option), ',')) times.push_back(parse_double(option, t, 0.0, 1e5));
-        } else if (option == "--frames") {
-            sequence_frames = parse_int(option, args.value(option), 1, 1000000);
-        } else if (option == "--seconds") {
-            seconds = parse_double(option, args.value(option), 0.0, 1e5);
-        } else if (option == "--video") {
-            video_path = args.value(option);
-            std::string extension = std::filesystem::path(video_path).extension().string();
-            std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-            if (extension != ".mp4") throw UsageError("--video: expected a file name ending in .mp4, got '" + video_path + "'");
-        } else if (option == "--overwrite") {
-            overwrite = true;
-        } else if (option == "--fps") {
-            fps = parse_double(option, args.value(option), 1.0, 1000.0);
-        } else if (option == "--out") {
-            out_dir = args.value(option);
-            if (out_dir.empty()) throw UsageError("--out: expected a folder");
-            // `--out shot.png` would make a folder of that name: say where the images go instead.
-            std::string extension = std::filesystem::path(out_dir).extension().string();
-            for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-            if (extension == ".png" || extension == ".mp4") {
-                throw UsageError("--out " + out_dir + ": a folder, not a file; the images go into it as <scene>_t<time>.png" +
-                                 (extension == ".mp4" ? " (a video: --video FILE.mp4)" : ""));
-            }
-        } else if (option == "--size") {
-            std::tie(width, height) = parse_size(args.value(option));
-        } else if (option == "--camera") {
-            parse_camera(args.value(option), camera_options);
-        } else if (option == "--overlay") {
-            parse_overlays(args.value(option), frame.overlays);
-        } else if (option == "--body") {
-            const std::string_view style = args.value(option);
-            if (style == "solid") frame.appearance.body = render::BodyStyle::Solid;
-            else if (style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
-            else if (style == "wireframe") frame.appearance.body = render::BodyStyle::Wireframe;
-            else if (style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
-            else throw UsageError("--body: expected solid, ghost, wireframe or hidden, got '" + std::string(style) + "'");
-        } else if (option == "--body-color") {
-            frame.appearance.body_color = parse_color(args.value(option));
-        } else if (option == "--no-ground") {
-            hide_ground = true;
-        } else if (option == "--no-shadows") {
-            frame.appearance.shadows = false;
-        } else if (option == "--no-pattern") {
-            frame.appearance.pattern = false;
-        } else if (option == "--samples") {
-            frame.appearance.samples = int(parse_int(option, args.value(option), 1, 4));
-        } else if (option == "--threads") {
-            threads = int(parse_int(option, args.value(option), 1, 256));
-        } else if (option == "--debug-offset") {
-            frame.debug.body_offset = parse_vec3(option, args.value(option), ',');
-        } else if (option == "--debug-flip-normals") {
-            frame.debug.flip_normals = true;
-        } else if (option == "--debug-particle-mesh") {
-            frame.debug.particle_mesh = true;
-        } else if (option == "--help" || option == "-h") {
-            std::cout << kUsage << "\n";
-            return kOk;
-        } else {
-            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
+    const std::string output = "What to draw and where", look = "Camera and look", debug = "Deliberate faults (the screenshot tests')";
+    app.add_option("--at", at_texts, "times in s; each image is drawn between the two ticks around it (default: none)")
+        ->option_text("T1,T2,...")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->group(output);
+    add_whole(app, "--frames", sequence_frames, 1, 1000000, "an animation: N frames at --fps from t = 0, <scene>_0000.png, ... (default: none)")
+        ->group(output);
+    add_number(app, "--seconds", seconds, 0.0, 1e5, "an animation as long as T seconds, instead of --frames (default: none)")->type_name("T")->group(output);
+    add_number(app, "--fps", fps, 1.0, 1000.0, "frames a second of an animation or video (default 60)")->type_name("F")->group(output);
+    app.add_option("--out", out_dir, "folder for DIR/<scene>_t<time>.png, made if missing (this or --video is required)")
+        ->type_name("DIR")
+        ->group(output);
+    app.add_option("--video", video_path,
+                   "one H.264 MP4 instead, by ffmpeg (without it: PNGs in FILE_frames/) (default: none)")
+        ->type_name("FILE.mp4")
+        ->group(output);
+    app.add_flag("--overwrite", overwrite, "replace an existing video file (without it, one is never replaced)")->group(output);
+    app.add_option("--size", size_text, "image size, 16..8192 each way; a video's sides even (default 800x600)")
+        ->type_name("WxH")
+        ->group(output);
+    add_whole(app, "--threads", threads, 1, 256, "threads for the physics (default " + std::to_string(threads) + ", this machine's)")
+        ->group(output);
+    app.add_option("--camera", camera_texts,
+                   "yaw=, pitch=, fov= (deg), distance=M, zoom=F, target=X:Y:Z, follow (default: framed once)")
+        ->option_text("KEY=VALUE,...")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->group(look);
+    app.add_option("--overlay", overlay_text,
+                   "particles, springs, pins, com, velocity, forces, normals, angular, contacts, links, none (default pins,links)")
+        ->type_name("NAME,...")
+        ->group(look);
+    app.add_option("--body", body_style, "solid, ghost (see-through), wireframe or hidden (default solid)")->type_name("STYLE")->group(look);
+    app.add_option("--body-color", color_text, "the soft body's colour, six hex digits (default: the demo's orange)")
+        ->type_name("RRGGBB")
+        ->group(look);
+    app.add_flag("--no-ground", hide_ground, "draw without the ground (the physics keeps it)")->group(look);
+    app.add_flag("--no-shadows", no_shadows, "no shadows")->group(look);
+    app.add_flag("--no-pattern", no_pattern, "a plain body, without the soft checks that show it turn")->group(look);
+    add_whole(app, "--samples", samples, 1, 4, "multisample anti-aliasing, 1 (off) to 4 (default 4)")->group(look);
+    bool bench = false;  // taken before the options are read (render_bench)
+    app.add_flag("--bench", bench, "time the renderer instead (softbody render --bench --help)")
+        ->group(look);
+    app.add_option("--debug-offset", offset_text, "draw the soft bodies shifted by DX,DY,DZ metres (default 0,0,0)")
+        ->type_name("DX,DY,DZ")
+        ->group(debug);
+    app.add_flag("--debug-flip-normals", flip_normals, "draw the surface normals flipped")->group(debug);
+    app.add_flag("--debug-particle-mesh", particle_mesh, "draw a reduced body's simulated particles instead of its full mesh")
+        ->group(debug);
+    app.footer(exit_codes_help(true));
+    if (!parse(app, argc, argv, 2)) return kOk;
+
+    // The values that are lists or pairs, checked as the options' own values are.
+    std::vector<double> times;
+    for (const std::string& text : at_texts) {
+        for (std::string_view t : split(text, ',')) times.push_back(parse_double("--at", t, 0.0, 1e5));
+    }
+    if (!video_path.empty()) {
+        std::string extension = std::filesystem::path(video_path).extension().string();
+        std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        if (extension != ".mp4") throw UsageError("--video: expected a file name ending in .mp4, got '" + video_path + "'");
+    }
+    if (app.count("--out") > 0) {
+        if (out_dir.empty()) throw UsageError("--out: expected a folder");
+        // `--out shot.png` would make a folder of that name: say where the images go instead.
+        std::string extension = std::filesystem::path(out_dir).extension().string();
+        for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        if (extension == ".png" || extension == ".mp4") {
+            throw UsageError("--out " + out_dir + ": a folder, not a file; the images go into it as <scene>_t<time>.png" +
+                             (extension == ".mp4" ? " (a video: --video FILE.mp4)" : ""));
         }
     }
+    int width = 800, height = 600;
+    if (!size_text.empty()) std::tie(width, height) = parse_size(size_text);
+    CameraOptions camera_options;
+    for (const std::string& text : camera_texts) parse_camera(text, camera_options);
+    render::Frame frame;
+    if (app.count("--overlay") > 0) parse_overlays(overlay_text, frame.overlays);
+    if (app.count("--body") > 0) {
+        if (body_style == "solid") frame.appearance.body = render::BodyStyle::Solid;
+        else if (body_style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
+        else if (body_style == "wireframe") frame.appearance.body = render::BodyStyle::Wireframe;
+        else if (body_style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
+        else throw UsageError("--body: expected solid, ghost, wireframe or hidden, got '" + body_style + "'");
+    }
+    if (app.count("--body-color") > 0) frame.appearance.body_color = parse_color(color_text);
+    if (no_shadows) frame.appearance.shadows = false;
+    if (no_pattern) frame.appearance.pattern = false;
+    frame.appearance.samples = samples;
+    if (!offset_text.empty()) frame.debug.body_offset = parse_vec3("--debug-offset", offset_text, ',');
+    frame.debug.flip_normals = flip_normals;
+    frame.debug.particle_mesh = particle_mesh;
+
     if (sequence_frames > 0 && !times.empty()) throw UsageError("--at and --frames: give one or the other");
-    if (seconds && (sequence_frames > 0 || !times.empty())) throw UsageError("--seconds: give it instead of --frames or --at");
+    if (seconds >= 0.0 && (sequence_frames > 0 || !times.empty())) throw UsageError("--seconds: give it instead of --frames or --at");
     // T seconds at F frames a second: the frames at 0, 1/F, ... before T, so the clip lasts T.
-    if (seconds) sequence_frames = std::max(1L, long(std::ceil(*seconds * fps - 1e-9)));
+    if (seconds >= 0.0) sequence_frames = std::max<std::int64_t>(1, std::int64_t(std::ceil(seconds * fps - 1e-9)));
     const bool video = !video_path.empty();
     if (video && !times.empty()) throw UsageError("--video needs --frames N or --seconds T (an animation), not --at");
     if (video && !out_dir.empty()) throw UsageError("--video and --out: give one or the other (the frames go into the video)");
@@ -316,9 +319,9 @@ int render_command(int argc, char** argv) {
                          ": a video needs even sides (H.264 stores colour at half resolution)");
     }
     if (overwrite && !video) throw UsageError("--overwrite goes with --video");
-    for (long k = 0; k < sequence_frames; ++k) times.push_back(double(k) / fps);
-    if (times.empty()) throw UsageError(std::string("--at T1,T2,... or --frames N is required\n") + kUsage);
-    if (out_dir.empty() && !video) throw UsageError(std::string("--out DIR or --video FILE.mp4 is required\n") + kUsage);
+    for (std::int64_t k = 0; k < sequence_frames; ++k) times.push_back(double(k) / fps);
+    if (times.empty()) throw UsageError("--at T1,T2,... or --frames N is required");
+    if (out_dir.empty() && !video) throw UsageError("--out DIR or --video FILE.mp4 is required");
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
 
@@ -440,14 +443,16 @@ double median(std::vector<double> values) {
 // the normals (meshes of 500, 2,500 and 10,000 vertices), and whole headless frames at 800x600.
 // Medians over the frames, so a busy machine disturbs the figures less.
 int render_bench(int argc, char** argv) {
-    Args args(argc, argv, 2);
+    CLI::App app("Times the renderer's own code, headless: streaming the particles and recomputing the normals of deforming\n"
+                 "tori (500, 2,500 and 10,000 vertices), and whole 800x600 frames of the default scene (medians). No files.",
+                 "softbody render --bench");
+    configure(app);
     int frames = 100;
-    while (!args.done()) {
-        const std::string_view option = args.next();
-        if (option == "--bench") continue;
-        if (option == "--frames") frames = int(parse_int(option, args.value(option), 1, 100000));
-        else throw UsageError("render --bench: unknown option '" + std::string(option) + "' (only --frames N)");
-    }
+    bool bench = true;
+    app.add_flag("--bench", bench, "time the renderer (this command)");
+    add_whole(app, "--frames", frames, 1, 100000, "frames to time for each row, after 10 warm-up frames (default 100)");
+    app.footer(exit_codes_help(false));
+    if (!parse(app, argc, argv, 2)) return kOk;
     using Clock = std::chrono::steady_clock;
     const auto ms_since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     const int width = 800, height = 600;

@@ -7,6 +7,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <CLI/CLI.hpp>
+
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +17,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "gui/bindings.h"
 #include "gui/demo.h"
 #include "gui/input.h"
 #include "gui/lesson_panel.h"
@@ -32,10 +35,6 @@
 namespace softbody::app {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: softbody [run] [--scene FILE] [--mesh FILE] [--set KEY=VALUE]...\n"
-    "                      [--size WxH] [--frames N [--frame-time S]] [--script FILE] [--screenshot FILE.png]";
 
 // The whole window, UI included, as it is in the back buffer now.
 void save_window(const std::string& path, int width, int height) {
@@ -90,31 +89,35 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
 }  // namespace
 
 int run_command(int argc, char** argv, int first) {
-    Args args(argc, argv, first);
+    CLI::App app("Opens the interactive demo: a window with the scene falling onto the ground and the panels on the left\n"
+                 "(README, \"The demo\"). With --frames it runs that many frames at a fixed frame time and prints a JSON\n"
+                 "summary instead of waiting for a person: how the tests and recordings drive it.",
+                 first == 1 ? "softbody" : "softbody run");
+    configure(app);
     SceneOptions scene;
+    scene.add_to(app);
     WindowOptions window_options;
     std::int64_t frames = -1;
     double frame_time = 1.0 / 60.0;
-    std::string script_path, screenshot_path;
-    while (!args.done()) {
-        if (scene.take(args)) continue;
-        const std::string_view option = args.next();
-        if (option == "--frames") frames = parse_int(option, args.value(option), 1, 10'000'000);
-        else if (option == "--frame-time") frame_time = parse_double(option, args.value(option), 1e-4, 1.0);
-        else if (option == "--script") script_path = args.value(option);
-        else if (option == "--screenshot") screenshot_path = args.value(option);
-        else if (option == "--size") {
-            const std::string_view size = args.value(option);
-            const auto x = size.find('x');
-            if (x == std::string_view::npos) throw UsageError("--size: expected WxH, got '" + std::string(size) + "'");
-            window_options.width = static_cast<int>(parse_int(option, size.substr(0, x), 320, 8192));
-            window_options.height = static_cast<int>(parse_int(option, size.substr(x + 1), 240, 8192));
-        } else if (option == "--help" || option == "-h") {
-            std::cout << kUsage << "\n";
-            return kOk;
-        } else {
-            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
-        }
+    std::string script_path, screenshot_path, size_text;
+    app.add_option("--size", size_text, "the window's size, at least 320x240 (default " + std::to_string(window_options.width) + "x" +
+                                            std::to_string(window_options.height) + ")")
+        ->type_name("WxH");
+    add_whole(app, "--frames", frames, 1, 10'000'000, "run N frames, print a JSON summary and exit (default: until the window closes)");
+    add_number(app, "--frame-time", frame_time, 1e-4, 1.0, "with --frames, each frame's time in s instead of the clock's (default 1/60)")
+        ->type_name("S");
+    app.add_option("--script", script_path, "timed input to replay: moves, presses, keys, values (app/gui/script.h) (default: none)")
+        ->type_name("FILE");
+    app.add_option("--screenshot", screenshot_path, "with --frames, save the whole window, panels included, at the end (default: none)")
+        ->type_name("FILE.png");
+    app.footer("\n" + controls_text(36) + "\nA scene that cannot load, or diverges, is shown in the window as an error; the app goes on.\n" +
+               exit_codes_help(false));
+    if (!parse(app, argc, argv, first)) return kOk;
+    if (!size_text.empty()) {
+        const auto x = size_text.find('x');
+        if (x == std::string::npos) throw UsageError("--size: expected WxH, got '" + size_text + "'");
+        window_options.width = static_cast<int>(parse_int("--size", std::string_view(size_text).substr(0, x), 320, 8192));
+        window_options.height = static_cast<int>(parse_int("--size", std::string_view(size_text).substr(x + 1), 240, 8192));
     }
     if (!screenshot_path.empty() && frames < 0) throw UsageError("--screenshot needs --frames N");
     const std::vector<ScriptCommand> script = script_path.empty() ? std::vector<ScriptCommand>{} : load_script(script_path);
@@ -249,6 +252,9 @@ int run_command(int argc, char** argv, int first) {
         for (const ComparedWorld& c : demo->compared()) worlds.push_back(entry(*c.world));
         out["compared"] = worlds;
     }
+    // The view: whether the camera follows the bodies, and where it looks now.
+    out["camera"] = {{"follow", demo->follow},
+                     {"target", {demo->camera.target.x, demo->camera.target.y, demo->camera.target.z}}};
     // The timeline: what the record holds.
     const History& history = demo->history();
     out["history"] = {{"oldest_tick", history.oldest_tick()}, {"newest_tick", history.newest_tick()},

@@ -1,4 +1,6 @@
 // softbody simulate: runs the physics alone and prints one JSON object with the outcome.
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -17,11 +19,6 @@
 namespace softbody::app {
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
-    "                         [--dump FILE.csv] [--dump-bodies FILE.csv] [--dump-every K] [--threads N]\n"
-    "  --set NAME.KEY=VALUE sets a named body's key (plank.mass=7)";
 
 // CSV writer for --dump (particles) and --dump-bodies (rigid bodies); reports a failed write
 // (a full disk) instead of losing data quietly.
@@ -76,30 +73,33 @@ private:
 }  // namespace
 
 int simulate_command(int argc, char** argv) {
-    Args args(argc, argv, 2);
+    CLI::App app("Runs the physics alone, without a window or GL, and prints one JSON object: the particles, energy,\n"
+                 "centre of mass, lowest point, stability, a hash of the state and every rigid body (README, \"softbody simulate\").\n"
+                 "Notes (a normalised quaternion, a capped particle budget) go to stderr as 'softbody: note: ...'.",
+                 "softbody simulate");
+    configure(app);
     SceneOptions scene;
+    scene.add_to(app);
     std::int64_t ticks = -1;
     double seconds = -1.0;
     std::string dump_path, dump_bodies_path;
     std::int64_t dump_every = 1;
     int threads = hardware_threads();
-    while (!args.done()) {
-        if (scene.take(args)) continue;
-        const std::string_view option = args.next();
-        if (option == "--ticks") ticks = parse_int(option, args.value(option), 0, 1'000'000'000);
-        else if (option == "--seconds") seconds = parse_double(option, args.value(option), 0.0, 1e7);
-        else if (option == "--dump") dump_path = args.value(option);
-        else if (option == "--dump-bodies") dump_bodies_path = args.value(option);
-        else if (option == "--dump-every") dump_every = parse_int(option, args.value(option), 1, 1'000'000'000);
-        else if (option == "--threads") threads = static_cast<int>(parse_int(option, args.value(option), 1, 256));
-        else if (option == "--help" || option == "-h") {
-            std::cout << kUsage << "\n";
-            return kOk;
-        } else {
-            throw UsageError("unknown option '" + std::string(option) + "'\n" + kUsage);
-        }
-    }
-    if ((ticks < 0) == (seconds < 0.0)) throw UsageError(std::string("give exactly one of --seconds or --ticks\n") + kUsage);
+    add_number(app, "--seconds", seconds, 0.0, 1e7, "simulated seconds to run, in whole ticks of dt (this or --ticks is required)")
+        ->type_name("T");
+    add_whole(app, "--ticks", ticks, 0, 1'000'000'000, "ticks of dt to run (this or --seconds is required)");
+    app.add_option("--dump", dump_path,
+                   "CSV: tick,time,particle,x,y,z,vx,vy,vz, every soft body, from tick 0 (default: none)")
+        ->type_name("FILE.csv");
+    app.add_option("--dump-bodies", dump_bodies_path,
+                   "CSV: tick,time,body,x,y,z,qw..qz,vx..vz,wx..wz,Lx..Lz, from tick 0 (default: none)")
+        ->type_name("FILE.csv");
+    add_whole(app, "--dump-every", dump_every, 1, 1'000'000'000, "a dump's row every K ticks (default 1)")->type_name("K");
+    add_whole(app, "--threads", threads, 1, 256,
+              "threads (default " + std::to_string(threads) + ": this machine's); any count gives the same bits");
+    app.footer(exit_codes_help(true));
+    if (!parse(app, argc, argv, 2)) return kOk;
+    if ((ticks < 0) == (seconds < 0.0)) throw UsageError("give exactly one of --seconds or --ticks");
 
     const Scene resolved = scene.resolve();
     const Params& params = resolved.params;

@@ -3,6 +3,8 @@
 //   softbody                       the interactive demo with the default scene
 //   softbody run [options]         the interactive demo with a chosen scene
 //   softbody simulate [options]    physics only, prints a JSON summary
+//   softbody render [options]      images and videos, headless
+//   softbody bench [options]       timings of the physics
 //   softbody lessons [--json]      the lessons, in the addendum's order
 //
 // Each subcommand lives in its own cmd_*.cpp; this file only dispatches and turns errors into
@@ -19,14 +21,14 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: softbody [run] [--scene FILE] [--mesh FILE] [--set KEY=VALUE]...\n"
-    "       softbody simulate [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... (--seconds T | --ticks N)\n"
-    "                         [--dump FILE.csv] [--dump-every K] [--threads N]\n"
-    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --at T1,T2,... --out DIR [options]\n"
-    "       softbody render [--scene FILE] [--mesh FILE] [--set KEY=VALUE]... --seconds T --video FILE.mp4 [options]\n"
-    "       softbody bench [--quick] [--json] [--sizes N,N,...] [options]\n"
-    "       softbody lessons [--json]\n"
-    "Run 'softbody <command> --help' for a command's options.";
+    "usage: softbody [COMMAND] [OPTIONS]\n"
+    "Commands ('softbody COMMAND --help' lists its options, a line each with its default):\n"
+    "  run        the interactive demo, in a window (the command when none is given)\n"
+    "  simulate   the physics alone, no window or GL: prints one JSON object\n"
+    "  render     PNG images, an animation's frames or an MP4 video, drawn headless\n"
+    "  bench      timings of the physics on the scenes the app opens\n"
+    "  lessons    the lessons, in the addendum's order\n"
+    "Every command takes --scene FILE, --mesh FILE and --set KEY=VALUE (lessons and bench excepted).";
 
 int dispatch(int argc, char** argv) {
     using namespace softbody::app;

@@ -32,6 +32,50 @@ void mouse_ray(const render::Camera& camera, float x, float y, float width, floa
     direction = glm::normalize(glm::vec3(far) - glm::vec3(near));
 }
 
+// The camera's follow (Demo::follow_bodies): how long the view takes to catch up with the
+// bodies, as the time constant of an exponential approach. Long enough that a bounce or a
+// wobble does not shake the view, short enough that a rolling body stays in it (0.4 s behind
+// at 1 m/s is 0.4 m).
+constexpr double kFollowSeconds = 0.4;
+
+// The centre of every body that moves (soft bodies and rigid bodies that are not fixed), each
+// weighted by its mass; empty when nothing moves.
+std::optional<glm::vec3> moving_centre(const World& world) {
+    glm::dvec3 sum(0.0);
+    double mass = 0.0;
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+        const SoftBody& body = world.soft_body(b);
+        const std::size_t n = body.particle_count();
+        if (n == 0) continue;
+        glm::dvec3 c(0.0);
+        for (std::size_t i = 0; i < n; ++i) c += glm::dvec3(body.x.x[i], body.x.y[i], body.x.z[i]);
+        const double m = double(body.mass) * double(n);
+        sum += c / double(n) * m;
+        mass += m;
+    }
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
+        if (world.rigid_body(b).fixed) continue;
+        const Vec3d x = world.rigid_motion(b).x;
+        sum += glm::dvec3(x.x, x.y, x.z) * world.rigid_body(b).mass;
+        mass += world.rigid_body(b).mass;
+    }
+    if (!(mass > 0.0)) return std::nullopt;
+    return glm::vec3(sum / mass);
+}
+
+std::size_t moving_body_count(const World& world) {
+    std::size_t n = world.soft_body_count();
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) n += world.rigid_body(b).fixed ? 0 : 1;
+    return n;
+}
+
+// The camera's level axes: its right, and its forward without the pitch.
+void level_axes(const render::Camera& camera, glm::vec2& right, glm::vec2& forward) {
+    const glm::vec3 r = camera.right();
+    right = glm::normalize(glm::vec2(r.x, r.y));
+    forward = glm::vec2(-right.y, right.x);  // z x right: the forward direction, level
+}
+
 }  // namespace
 
 Demo::Demo(const Scene& scene) : clock_(scene.params.dt) {
@@ -61,6 +105,7 @@ void Demo::after_load(const Scene& scene) {
     compared_.clear();  // a new scene: one world again
     stop_inspecting();
     match_ground(scene.params, appearance);
+    follow = moving_body_count(*world_) == 1;  // one body: the view goes where it goes
     frame_body();
     sample_energy();
     history_.start(*world_);
@@ -246,6 +291,11 @@ bool Demo::reset_pending() const {
 }
 
 void Demo::advance(double wall_seconds) {
+    run_due_ticks(wall_seconds);
+    follow_bodies(wall_seconds);  // paused too: the view still catches up (after a step back, say)
+}
+
+void Demo::run_due_ticks(double wall_seconds) {
     ticks_last_frame_ = 0;
     clock_.set_max_ticks_per_frame(max_ticks_per_frame);
     if (paused || world_->status() != Status::Ok) return;
@@ -259,12 +309,44 @@ void Demo::advance(double wall_seconds) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     physics_ms_per_tick_ = ms / std::max(1, ticks_last_frame_);
     if (world_->status() != Status::Ok) error_ = world_->divergence();
-    if (follow) {
-        const Vec3 com = world_->center_of_mass();
-        camera.target.x = com.x;
-        camera.target.y = com.y;
-    }
     sample_energy();
+}
+
+// The target approaches the bodies' centre plus the offset the framing gave it, level, with
+// the time constant kFollowSeconds: 1 - exp(-t / tau) of the way each frame, which is the same
+// motion whatever the frame rate. Its height is left alone, so the ground stays where it is in
+// the view while a body bounces. While the mouse pulls a body the camera holds still: moving
+// it would move the point the body is pulled toward, and the body after it.
+void Demo::follow_bodies(double seconds) {
+    if (!follow || grabbing() || !(seconds > 0.0)) return;
+    const std::optional<glm::vec3> centre = moving_centre(*world_);
+    if (!centre) return;
+    glm::vec2 right, forward;
+    level_axes(camera, right, forward);
+    const glm::vec2 wanted = glm::vec2(*centre) + right * follow_offset_.x + forward * follow_offset_.y;
+    const float a = float(1.0 - std::exp(-seconds / kFollowSeconds));
+    const glm::vec2 now = glm::vec2(camera.target) + (wanted - glm::vec2(camera.target)) * a;
+    camera.target.x = now.x;
+    camera.target.y = now.y;
+}
+
+void Demo::pan(float dx, float dy) {
+    const glm::vec3 before = camera.target;
+    camera.pan(dx, dy);
+    // Following, the pan moves where the bodies sit in the view, and the follow keeps that.
+    glm::vec2 right, forward;
+    level_axes(camera, right, forward);
+    const glm::vec2 moved(camera.target - before);
+    follow_offset_ += glm::vec2(glm::dot(moved, right), glm::dot(moved, forward));
+}
+
+void Demo::keep_framing_offset() {
+    const std::optional<glm::vec3> centre = moving_centre(*world_);
+    if (!centre) return;
+    glm::vec2 right, forward;
+    level_axes(camera, right, forward);
+    const glm::vec2 d = glm::vec2(camera.target) - glm::vec2(*centre);
+    follow_offset_ = {glm::dot(d, right), glm::dot(d, forward)};
 }
 
 void Demo::single_tick() {
@@ -384,6 +466,7 @@ void Demo::frame_body() {
     camera.frame(centre, std::max(0.5f * (top - bottom), radius) * 1.15f, aspect * (1.0f - 2.0f * shift));
     const float view_width = 2.0f * camera.distance * std::tan(0.5f * camera.fov_y) * aspect;
     camera.pan(-shift * view_width, 0.0f);
+    keep_framing_offset();
 }
 
 void Demo::inspect(const Pick& pick) {

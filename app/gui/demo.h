@@ -132,7 +132,13 @@ public:
     render::Camera camera;
     render::Overlays overlays;
     render::Appearance appearance;
-    bool follow = false;  // keep the camera's target over the centre of mass
+    // Camera follow: the view moves with the bodies' centre (every moving body's centre of mass,
+    // weighted by mass), horizontally and smoothed, keeping them where the framing (or a pan)
+    // put them in the view; it holds still while the mouse pulls a body. On by default for a
+    // scene with one moving body (fixed bodies are scenery); the Display panel and T toggle it.
+    bool follow = false;
+    void follow_bodies(double seconds);  // one frame's worth (Demo::advance calls it)
+    void pan(float dx, float dy);        // the camera's pan, which a follow keeps
     // The view's shape: width / height, and the fraction of its width to move a framed body
     // right by (to centre it in the part the panels leave free). Set by the window each frame.
     void set_view(float aspect, float shift) {
@@ -164,6 +170,8 @@ public:
 
 private:
     void after_load(const Scene& scene);
+    void run_due_ticks(double wall_seconds);
+    void keep_framing_offset();  // the framing's place of the bodies in the view, for the follow
     void sample_energy();
     void note_collision();  // after each tick
     void tick_once();       // one tick, recorded or replayed
@@ -188,6 +196,9 @@ private:
     double physics_ms_per_tick_ = 0.0;
     float grab_depth_ = 0.0f;
     float view_aspect_ = 1.6f, view_shift_ = 0.0f;  // distance along the view direction of the grab plane
+    // Where the camera's target sits from the bodies' centre, level: along the camera's right
+    // and its level forward (m), so an orbit keeps the bodies where they are in the view.
+    glm::vec2 follow_offset_{0.0f};
 };
 
 }  // namespace softbody::app

@@ -1,10 +1,8 @@
 #include "gui/input.h"
 
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-
 #include <cmath>
 
+#include "gui/bindings.h"
 #include "gui/demo.h"
 
 namespace softbody::app {
@@ -57,7 +55,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             } else if (drag_ == Drag::Pan) {
                 // One pixel moves the target by the width a pixel covers at the target.
                 const float metres_per_pixel = 2.0f * demo.camera.distance * std::tan(0.5f * demo.camera.fov_y) / height;
-                demo.camera.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+                demo.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
             }
             break;
         }
@@ -70,30 +68,32 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
         case InputEvent::Type::Scroll:
             demo.camera.zoom(std::pow(0.88f, e.scroll));
             break;
-        case InputEvent::Type::Key:
-            switch (e.key) {
-                case GLFW_KEY_SPACE: demo.paused = !demo.paused; break;
-                case GLFW_KEY_N:
-                case GLFW_KEY_PERIOD:
+        case InputEvent::Type::Key: {
+            // The keys and what they do are listed in gui/bindings.cpp, which the help prints.
+            const KeyBinding* binding = binding_of_key(e.key);
+            if (!binding) break;
+            switch (binding->command) {
+                case KeyCommand::Pause: demo.paused = !demo.paused; break;
+                case KeyCommand::Tick:
                     demo.paused = true;
                     demo.single_tick();
                     break;
-                case GLFW_KEY_COMMA: demo.step_back(); break;
-                case GLFW_KEY_R: demo.reset(); break;
-                case GLFW_KEY_F: demo.frame_body(); break;
-                case GLFW_KEY_P: demo.overlays.particles = !demo.overlays.particles; break;
-                case GLFW_KEY_S: demo.overlays.springs = !demo.overlays.springs; break;
-                case GLFW_KEY_C: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;
-                case GLFW_KEY_V: demo.overlays.velocities = !demo.overlays.velocities; break;
-                case GLFW_KEY_W: demo.overlays.angular = !demo.overlays.angular; break;
-                case GLFW_KEY_H:
-                case GLFW_KEY_F1: ui.toggle_help = true; break;
-                case GLFW_KEY_ESCAPE: ui.close_help = true; break;
-                case GLFW_KEY_TAB: ui.toggle_panels = true; break;
-                case GLFW_KEY_M: ui.toggle_recording = true; break;
-                default: break;
+                case KeyCommand::TickBack: demo.step_back(); break;
+                case KeyCommand::Reset: demo.reset(); break;
+                case KeyCommand::Frame: demo.frame_body(); break;
+                case KeyCommand::Follow: demo.follow = !demo.follow; break;
+                case KeyCommand::Particles: demo.overlays.particles = !demo.overlays.particles; break;
+                case KeyCommand::Springs: demo.overlays.springs = !demo.overlays.springs; break;
+                case KeyCommand::CentreOfMass: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;
+                case KeyCommand::Velocities: demo.overlays.velocities = !demo.overlays.velocities; break;
+                case KeyCommand::Angular: demo.overlays.angular = !demo.overlays.angular; break;
+                case KeyCommand::Record: ui.toggle_recording = true; break;
+                case KeyCommand::Panels: ui.toggle_panels = true; break;
+                case KeyCommand::Help: ui.toggle_help = true; break;
+                case KeyCommand::CloseHelp: ui.close_help = true; break;
             }
             break;
+        }
     }
     return ui;
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "cli.h"
+#include "gui/bindings.h"
 #include "gui/demo.h"
 #include "gui/recorder.h"
 #include "physics/pair_forces.h"
@@ -512,9 +513,12 @@ void Panels::mesh(Demo& demo) {
         if (body.reduced) {
             ImGui::Text("%zu vertices, simulated on %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
             if (ImGui::IsItemHovered()) {
-                ImGui::SetTooltip("Above max_particles (%d): the %zu distinct positions follow %zu particles chosen over\n"
+                // max_particles all (0) is capped too: no body runs on more than kMaxParticles.
+                const bool all = body.params.max_particles == 0;
+                ImGui::SetTooltip("Above %s (%zu): the %zu distinct positions follow %zu particles chosen over\n"
                                   "the body (skinning); each weighs %.3g particles' mass, k and c as much again.",
-                                  body.params.max_particles, mesh.particle_count(), world.particle_count(),
+                                  all ? "the cap on max_particles=all" : "max_particles",
+                                  all ? kMaxParticles : std::size_t(body.params.max_particles), mesh.particle_count(), world.particle_count(),
                                   double(mesh.particle_count()) / double(world.particle_count()));
             }
         } else {
@@ -724,7 +728,11 @@ void Panels::display(Demo& demo) {
     ImGui::Checkbox("springs between bodies", &o.links);
     ImGui::Checkbox("ground and grid", &a.ground);
     ImGui::SameLine(180 * scale_);
-    ImGui::Checkbox("follow body", &demo.follow);
+    ImGui::Checkbox("follow the bodies (T)", &demo.follow);
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("The camera moves with the bodies' centre, smoothed and level, keeping them where they are in\n"
+                          "the view (pan to move them; it holds still while you pull a body). On for a scene with one body.");
+    }
     int style = static_cast<int>(a.body);
     if (ImGui::Combo("body", &style, "solid\0ghost (see-through)\0wireframe\0hidden\0")) a.body = static_cast<render::BodyStyle>(style);
     ImGui::ColorEdit3("colour", &a.body_color.x, ImGuiColorEditFlags_NoInputs);
@@ -772,31 +780,17 @@ void Panels::help() {
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x * 0.5f, viewport->WorkPos.y + viewport->WorkSize.y * 0.5f),
                             ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     ImGui::Begin("Controls", &show_help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-    const char* rows[][2] = {
-        {"left-drag on a body", "grab a particle (or a rigid body's point) and pull it"},
-        {"shift + left-click", "pin or free a particle"},
-        {"left/right-drag", "orbit the camera"},
-        {"middle-drag, ctrl + right-drag", "pan"},
-        {"wheel", "zoom"},
-        {"F", "frame the body"},
-        {"Space", "pause / play"},
-        {"N or .", "one tick"},
-        {",", "one tick back (the timeline keeps the last 20 s)"},
-        {"R", "reset"},
-        {"M", "record the view into a video / stop"},
-        {"P  S  C  V  W", "particles, springs, centre of mass, velocities, omega and L"},
-        {"Tab", "hide / show the panels"},
-        {"H, F1 / Esc", "this help / close it"},
-        {"drop a file", "load an .obj or .off mesh"},
-    };
-    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
-        for (const auto& row : rows) {
+    // The mouse and every key, from the one list the controls use (gui/bindings.cpp).
+    if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg)) {
+        const auto row = [](const char* left, const char* right) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(row[0]);
+            ImGui::TextUnformatted(left);
             ImGui::TableSetColumnIndex(1);
-            ImGui::TextUnformatted(row[1]);
-        }
+            ImGui::TextUnformatted(right);
+        };
+        for (const MouseBinding& m : mouse_bindings()) row(m.gesture, m.what);
+        for (const KeyBinding& k : key_bindings()) row(k.label, k.what);
         ImGui::EndTable();
     }
     ImGui::End();

@@ -1,8 +1,5 @@
 #include "gui/script.h"
 
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,19 +7,22 @@
 #include <map>
 #include <sstream>
 
+#include "gui/bindings.h"
 #include "physics/error.h"
 
 namespace softbody::app {
 
 namespace {
 
-const std::map<std::string, int>& key_names() {
-    static const std::map<std::string, int> keys = {
-        {"space", GLFW_KEY_SPACE}, {"n", GLFW_KEY_N}, {"period", GLFW_KEY_PERIOD}, {"comma", GLFW_KEY_COMMA}, {"r", GLFW_KEY_R},
-        {"f", GLFW_KEY_F}, {"h", GLFW_KEY_H}, {"f1", GLFW_KEY_F1}, {"p", GLFW_KEY_P}, {"s", GLFW_KEY_S},
-        {"c", GLFW_KEY_C}, {"v", GLFW_KEY_V}, {"w", GLFW_KEY_W}, {"m", GLFW_KEY_M}, {"tab", GLFW_KEY_TAB}, {"escape", GLFW_KEY_ESCAPE},
-    };
-    return keys;
+// The keys a script can press, by the names gui/bindings.cpp gives them.
+std::string key_names() {
+    std::string names;
+    for (const KeyBinding& binding : key_bindings()) {
+        for (const char* name : binding.names) {
+            if (name) names += (names.empty() ? "" : " ") + std::string(name);
+        }
+    }
+    return names;
 }
 
 int button_number(const std::string& name) {
@@ -99,8 +99,8 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
             command.verb = "input";
         } else if (verb == "key") {
             e.type = InputEvent::Type::Key;
-            if (args.size() != 1 || !key_names().count(args[0])) fail("key needs one of space n period comma r f h f1 p s c v w m tab escape");
-            e.key = key_names().at(args[0]);
+            if (args.size() != 1 || key_of_name(args[0]) == 0) fail("key needs one of " + key_names());
+            e.key = key_of_name(args[0]);
             command.verb = "input";
         } else if (verb == "set") {
             if (args.size() != 2) fail("set needs KEY VALUE");

@@ -5,7 +5,7 @@
 //   11       press     left [shift|ctrl]
 //   40       release   left
 //   50       scroll    -2               wheel clicks
-//   60       key       space            space n period comma r f h p s c v w m tab escape
+//   60       key       space            a key by its name in gui/bindings.cpp (space, period, t, ...)
 //   70       set       stiffness 40     as --set, or a slider (plank.mass 7 for a named body)
 //   80       load_scene assets/scenes/pig.json
 //   81       load_mesh  my.obj

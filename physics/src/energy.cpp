@@ -1,8 +1,11 @@
 // What the world reports about itself: energies (for plots, tests and divergence), the centre
 // of mass, and a hash of the whole state (equal hashes: identical runs).
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
+#include "physics/collide.h"
 #include "physics/world.h"
 
 namespace softbody {
@@ -86,14 +89,18 @@ Vec3 World::center_of_mass() const {
     return {float(x / double(n)), float(y / double(n)), float(z / double(n))};
 }
 
+// The lowest point of any body: a soft body's lowest particle, a rigid body's lowest point of
+// its collision shape as it is now (collide.h's lowest_z), fixed bodies included. A scene at
+// rest on the ground reports the ground's height, less what the contacts let bodies sink.
 float World::min_z() const {
-    if (!soft_.empty()) return *std::min_element(body().x.z.begin(), body().x.z.end());
-    double lowest = 0.0;  // no soft body: the lowest point any rigid body's bounding sphere reaches
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        const double z = rigid_motion(b).x.z - rigid_[b].bounding_radius;
-        lowest = b == 0 ? z : std::min(lowest, z);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const SoftBody& body : soft_) {
+        for (float z : body.x.z) lowest = std::min(lowest, double(z));
     }
-    return float(lowest);
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        lowest = std::min(lowest, lowest_z(shapes_[b], pose_of(y_.data() + b * rigid::kStateSize)));
+    }
+    return std::isfinite(lowest) ? float(lowest) : 0.0f;  // 0 for a world without bodies
 }
 
 std::uint64_t World::state_hash() const {

@@ -355,6 +355,8 @@ Mesh generated_mesh(std::string_view name) {
                      ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N, boxes:N, pyramid:L and random:SEED are scenes: use --scene)");
 }
 
+Mesh open_mesh(const std::string& name) { return is_generated(name) ? generated_mesh(name) : load_mesh(name); }
+
 Scene generated_scene(std::string_view name, const Scene& base) {
     Scene scene = base;
     std::size_t start = 0;

@@ -23,7 +23,6 @@
 
 #include "physics/error.h"
 #include "message_text.h"
-#include "physics/generated.h"
 #include "physics/mesh.h"
 #include "text_file.h"
 
@@ -545,7 +544,6 @@ RawMesh parse_off_text(const std::string& text, const std::string& origin) {
 }
 
 Mesh load_mesh(const std::string& path) {
-    if (is_generated(path)) return generated_mesh(path);  // "cloud:N": made, not read
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".obj" && ext != ".off") {

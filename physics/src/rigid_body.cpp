@@ -8,6 +8,7 @@
 
 #include "message_text.h"
 #include "physics/error.h"
+#include "physics/generated.h"
 #include "physics/mass_properties.h"
 #include "physics/shape_meshes.h"
 
@@ -117,7 +118,7 @@ Geometry mesh_geometry(const RigidBodyDef& def) {
     if (def.mesh.empty()) refuse(def, "mesh", "a mesh body needs a mesh file");
     Mesh mesh;
     try {
-        mesh = load_mesh(def.mesh);
+        mesh = open_mesh(def.mesh);
     } catch (const InputError& e) {
         throw InputError("rigid body '" + printable(def.name) + "': " + e.what());
     }

@@ -525,11 +525,11 @@ void set_scene_key(Scene& scene, std::string_view key, std::string_view text) {
 WorldDef make_world_def(const Scene& scene) {
     WorldDef def;
     def.params = scene.params;
-    if (!scene.params.mesh.empty()) def.soft_bodies.push_back(SoftBodyDef{"body", scene.params, load_mesh(scene.params.mesh)});
+    if (!scene.params.mesh.empty()) def.soft_bodies.push_back(SoftBodyDef{"body", scene.params, open_mesh(scene.params.mesh)});
     for (const SoftBodyScene& body : scene.soft_bodies) {
         Mesh mesh;
         try {
-            mesh = load_mesh(body.params.mesh);
+            mesh = open_mesh(body.params.mesh);
         } catch (const InputError& e) {
             throw InputError("soft body '" + body.name + "': " + e.what());
         }

@@ -77,6 +77,15 @@ NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p) {
     return out;
 }
 
+double lowest_z(const CollisionShape& shape, const Pose& pose) {
+    if (shape.is_sphere()) return pose.x.z - shape.radius;
+    // Only the height of each turned vertex is needed: the bottom row of R times v.
+    const Mat3 R = pose.q.to_matrix();
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Vec3d& v : shape.hull->vertices) lowest = std::min(lowest, (R * v).z);
+    return pose.x.z + lowest;
+}
+
 std::optional<SurfacePoint> point_contact(const CollisionShape& shape, const Pose& pose, const Vec3d& p,
                                           double margin) {
     if (shape.is_sphere()) {

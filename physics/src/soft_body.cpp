@@ -51,6 +51,13 @@ void choose_particles(SoftBody& body) {
 
 }  // namespace
 
+std::string particle_cap_note(const SoftBody& body) {
+    if (body.params.max_particles != 0 || !body.reduced) return "";
+    return body.mesh.source + ": max_particles=all is capped at " + std::to_string(kMaxParticles) + " particles: its " +
+           std::to_string(body.mesh.particle_count()) + " distinct vertices run on " + std::to_string(body.particle_count()) +
+           " (--set max_particles=N, 4 to " + std::to_string(kMaxParticles) + ", for fewer)";
+}
+
 void build_particles(SoftBody& body) {
     const Params& p = body.params;
     choose_particles(body);

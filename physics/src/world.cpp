@@ -78,6 +78,10 @@ World::World(WorldDef def, WorldOptions options)
     build();
     // What the loader set aside in each mesh file (a dangling normal index, ...): one line each.
     for (const SoftBody& body : soft_) notes_.insert(notes_.end(), body.mesh.warnings.begin(), body.mesh.warnings.end());
+    // A body that asked for every vertex and got fewer: the cap said, not kept quiet.
+    for (const SoftBody& body : soft_) {
+        if (std::string note = particle_cap_note(body); !note.empty()) notes_.push_back(std::move(note));
+    }
     resolve_links(def.springs);
     update_substeps();  // the links' springs count toward the step's stability
 }

@@ -88,6 +88,69 @@ TEST(App, StartsAndShowsTheSceneAndPanels) {
     EXPECT_GT(brightness(780, 20), 150) << "no sky at the top right";
 }
 
+// The default ball, left alone, rolls 2.5 m from where it fell; the camera follows it (on by
+// default for a scene with one body): after 30 s its target has moved as the ball's centre did,
+// level, to the smoothing's lag (0.4 s behind a ball all but at rest), so the ball stays where
+// the first framing put it in the view. With T pressed at the start the camera stays put, and
+// a scene of several bodies starts without following.
+TEST(App, CameraFollowsTheDefaultBall) {
+    const std::string common = "--size 480x300 --frames 600 --frame-time 0.05";  // 30 s
+    const Result followed = run_app(common);
+    const Result stayed = run_app(common + " --script " + quote(write_script("follow_off.script", "0 key t\n").string()));
+    ASSERT_EQ(followed.exit_code, 0) << followed.err;
+    ASSERT_EQ(stayed.exit_code, 0) << stayed.err;
+    EXPECT_TRUE(followed.summary["camera"]["follow"].get<bool>());
+    EXPECT_FALSE(stayed.summary["camera"]["follow"].get<bool>());
+    // The same run either way (the camera does not touch the physics): the ball rolled away.
+    EXPECT_EQ(followed.summary["state_hash"], stayed.summary["state_hash"]);
+    const auto& com = followed.summary["com"];
+    const double rolled = std::hypot(com[0].get<double>(), com[1].get<double>());  // it fell at x = y = 0
+    EXPECT_GT(rolled, 2.0) << followed.out;
+    // The camera that stayed is where the framing put it at the start: the follow moved the
+    // other by the ball's way, and not up or down.
+    const auto& moved = followed.summary["camera"]["target"];
+    const auto& start = stayed.summary["camera"]["target"];
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_NEAR(moved[k].get<double>() - start[k].get<double>(), com[k].get<double>(), 0.05) << "axis " << k;
+    }
+    EXPECT_EQ(moved[2].get<double>(), start[2].get<double>());
+
+    const Result pile = run_app("--scene pile:5 --size 480x300 --frames 2");
+    ASSERT_EQ(pile.exit_code, 0) << pile.err;
+    EXPECT_FALSE(pile.summary["camera"]["follow"].get<bool>());
+}
+
+// `softbody run --help` lists its options, the mouse and every key, each with what it does (the
+// same list the help overlay shows: gui/bindings.cpp), and opens no window.
+TEST(App, RunHelpListsTheOptionsTheMouseAndEveryKey) {
+    FILE* pipe = ::popen((std::string(SOFTBODY_EXE) + " run --help 2>&1").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string help;
+    std::array<char, 4096> buffer;
+    while (std::fgets(buffer.data(), buffer.size(), pipe)) help += buffer.data();
+    const int status = ::pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << help;
+    for (const char* option : {"--scene FILE", "--mesh FILE", "--set KEY=VALUE", "--size WxH", "--frames N", "--frame-time S",
+                               "--script FILE", "--screenshot FILE.png"}) {
+        EXPECT_NE(help.find("\n  " + std::string(option) + " "), std::string::npos) << option << " missing:\n" << help;
+    }
+    const auto mouse = help.find("\nMouse"), keys = help.find("\nKeys:\n");
+    ASSERT_NE(mouse, std::string::npos) << help;
+    ASSERT_NE(keys, std::string::npos) << help;
+    for (const char* gesture : {"left-drag on a body", "shift + left-click", "ctrl + left-click", "right-drag", "middle-drag", "wheel",
+                                "drop a file"}) {
+        EXPECT_NE(help.find(gesture, mouse), std::string::npos) << gesture << " missing:\n" << help;
+    }
+    // Every key the controls act on, each on its own line with what it does.
+    for (const char* key : {"Space", "N or .", ", (comma)", "R", "F", "T", "P", "S", "C", "V", "W", "M", "Tab", "H or F1", "Esc"}) {
+        const auto at = help.find("\n  " + std::string(key) + " ", keys);
+        ASSERT_NE(at, std::string::npos) << "key " << key << " missing:\n" << help.substr(keys);
+        const std::string line = help.substr(at + 1, help.find('\n', at + 1) - at - 1);
+        EXPECT_GT(line.find_first_not_of(' ', 2 + std::string(key).size()), 12u) << line;
+        EXPECT_GT(line.size(), 30u) << "says nothing: " << line;
+    }
+}
+
 TEST(App, DraggingTheBodyLiftsIt) {
     // Grab the resting sphere from above its middle and pull it up and to the left.
     const fs::path script = write_script("drag.script",

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -124,6 +126,24 @@ TEST(Simulate, SecondsCountTicksOfDt) {
     EXPECT_EQ(json::parse(r.out).at("ticks"), 50);
 }
 
+// max_particles=all promises a particle per vertex; above the cap (20,000) the run goes on, on
+// at most that many, and one line on stderr says the cap, the particles used and how to ask
+// for fewer. The default budget (a number, 3,000) reduces as documented, without a note.
+TEST(Simulate, MaxParticlesAllAboveTheCapSaysSoInOneLine) {
+    const Result r = run({"simulate", "--mesh", "cloud:20500", "--set", "max_particles=all", "--ticks", "0"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j.at("vertices"), 20500);
+    const int particles = j.at("particles");
+    EXPECT_LE(particles, 20000);
+    EXPECT_EQ(r.err, "softbody: note: cloud:20500: max_particles=all is capped at 20000 particles: its 20500 distinct vertices "
+                     "run on " + std::to_string(particles) + " (--set max_particles=N, 4 to 20000, for fewer)\n");
+    const Result budget = run({"simulate", "--mesh", "cloud:20500", "--ticks", "0"});
+    ASSERT_EQ(budget.exit_code, 0) << describe(budget);
+    EXPECT_LE(json::parse(budget.out).at("particles").get<int>(), 3000);
+    EXPECT_EQ(budget.err, "");
+}
+
 // --- The CSV dump ---------------------------------------------------------------------------
 
 TEST(Simulate, DumpWritesCsvEveryKTicksFromTickZero) {
@@ -215,6 +235,22 @@ TEST(Simulate, RigidBodiesAreReportedWithMomentumAndInertia) {
     EXPECT_NEAR(j.at("momentum")[0].get<double>(), 6.0, 1e-12);
     EXPECT_NEAR(j.at("angular_momentum")[1].get<double>(), 6.0, 1e-12);
     EXPECT_NEAR(j.at("angular_momentum")[2].get<double>(), 5.0, 1e-12);
+}
+
+// min_z is the lowest point of any body's shape: boxes and balls settled in their bin report
+// the ground (to the millimetre the contacts let bodies sink), not the walls' bounding spheres
+// (-0.63 m), and a box turned 45 degrees about x its lowest edge, 2 - sqrt(1/2) m.
+TEST(Simulate, MinZIsTheLowestPointOfAnyBodysShape) {
+    const Result pile = run({"simulate", "--scene", "boxes:30", "--seconds", "3"});
+    ASSERT_EQ(pile.exit_code, 0) << describe(pile);
+    EXPECT_NEAR(json::parse(pile.out).at("min_z").get<double>(), 0.0, 1e-3);
+    TempDir dir;
+    const std::string scene = dir.write("tilted.json", "{\"gravity\": [0, 0, 0], \"rigid_bodies\": [{\"name\": \"cube\", "
+                                                       "\"shape\": \"box\", \"size\": [1, 1, 1], \"position\": [0, 0, 2], "
+                                                       "\"rotation\": [45, 0, 0]}]}");
+    const Result tilted = run({"simulate", "--scene", scene, "--ticks", "0"});
+    ASSERT_EQ(tilted.exit_code, 0) << describe(tilted);
+    EXPECT_NEAR(json::parse(tilted.out).at("min_z").get<double>(), 2.0 - std::sqrt(0.5), 1e-6);
 }
 
 TEST(Simulate, DumpBodiesWritesEveryRigidBodyEveryKTicks) {
@@ -364,6 +400,87 @@ TEST(Simulate, SameStateHashAtOneAndTwoThreads) {
     EXPECT_EQ(ja.at("particles"), 550);
     EXPECT_EQ(ja.at("state_hash"), jb.at("state_hash"));
     EXPECT_EQ(ja.at("state_hash"), json::parse(again.out).at("state_hash"));
+}
+
+// --- Help -------------------------------------------------------------------------------------
+
+// The options of a command's --help: each line of an options section (a line starting "  -"),
+// split into the option with its value's name and what it says.
+struct HelpLine {
+    std::string option, text;
+};
+std::vector<HelpLine> option_lines(const std::string& help, std::vector<std::string>& loose) {
+    std::vector<HelpLine> lines;
+    std::istringstream in(help);
+    std::string line;
+    bool in_options = false;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        if (line.back() == ':' && line[0] != ' ') {  // a section's title: "Options:", "Camera and look:"
+            in_options = line.rfind("Exit codes", 0) != 0;
+            continue;
+        }
+        if (!in_options) continue;
+        if (line.rfind("  -", 0) != 0) {
+            loose.push_back(line);  // a line that is no option's: a description run onto its own line
+            continue;
+        }
+        const auto gap = line.find("  ", 2);
+        const auto text = gap == std::string::npos ? std::string::npos : line.find_first_not_of(' ', gap);
+        lines.push_back({line.substr(2, gap == std::string::npos ? std::string::npos : gap - 2),
+                         text == std::string::npos ? "" : line.substr(text)});
+    }
+    return lines;
+}
+
+// Every command's --help: exit 0, each option on one line of its own saying what it does, and
+// each option that takes a value its default (or that it is required); the exit codes.
+TEST(Help, EveryCommandGivesEachOptionOneLineWithItsDefault) {
+    for (const std::string command : {"simulate", "render", "bench", "lessons"}) {
+        SCOPED_TRACE("softbody " + command + " --help");
+        const Result r = run({command, "--help"});
+        if (command == "render" && r.exit_code == 2 && r.err.find("without the renderer") != std::string::npos) continue;
+        ASSERT_EQ(r.exit_code, 0) << describe(r);
+        EXPECT_EQ(r.err, "");
+        EXPECT_EQ(r.out.rfind("Usage: softbody " + command + " [OPTIONS]"), r.out.find("Usage:")) << r.out;
+        std::vector<std::string> loose;
+        const std::vector<HelpLine> options = option_lines(r.out, loose);
+        EXPECT_GE(options.size(), 2u) << r.out;
+        EXPECT_TRUE(loose.empty()) << "not on its option's line: " << (loose.empty() ? "" : loose[0]);
+        for (const HelpLine& o : options) {
+            EXPECT_GE(o.text.size(), 8u) << "says nothing: " << o.option;
+            const bool takes_value = o.option.find(' ') != std::string::npos && o.option.rfind("-h,", 0) != 0;
+            if (takes_value) {
+                EXPECT_TRUE(o.text.find("default") != std::string::npos || o.text.find("required") != std::string::npos)
+                    << o.option << ": no default in '" << o.text << "'";
+            }
+        }
+        EXPECT_NE(r.out.find("Exit codes:\n  0  done\n  2  bad input"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("\n  4  "), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("\n  3  ") != std::string::npos, command == "simulate" || command == "render") << r.out;
+    }
+}
+
+// simulate's help says what the options the issue asked about do: what --dump writes, the
+// thread count it defaults to, and the exit codes 0, 2, 3 and 4.
+TEST(Help, SimulateSaysWhatDumpWritesTheThreadsAndTheExitCodes) {
+    const Result r = run({"simulate", "--help"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    std::vector<std::string> loose;
+    std::map<std::string, std::string> text;
+    for (const HelpLine& o : option_lines(r.out, loose)) text[o.option.substr(0, o.option.find(' '))] = o.text;
+    for (const char* option : {"--scene", "--mesh", "--set", "--seconds", "--ticks", "--dump", "--dump-bodies", "--dump-every",
+                               "--threads"}) {
+        EXPECT_TRUE(text.count(option)) << option << " is not listed:\n" << r.out;
+    }
+    EXPECT_NE(text["--dump"].find("tick,time,particle,x,y,z,vx,vy,vz"), std::string::npos) << text["--dump"];
+    EXPECT_NE(text["--dump-bodies"].find("tick,time,body,x,y,z"), std::string::npos) << text["--dump-bodies"];
+    const auto at = text["--threads"].find("default ");
+    ASSERT_NE(at, std::string::npos) << text["--threads"];
+    EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(text["--threads"][at + 8]))) << text["--threads"];
+    for (const char* code : {"\n  0  done", "\n  2  bad input", "\n  3  the simulation diverged", "\n  4  "}) {
+        EXPECT_NE(r.out.find(code), std::string::npos) << code << "\n" << r.out;
+    }
 }
 
 }  // namespace

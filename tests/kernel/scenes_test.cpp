@@ -24,7 +24,7 @@ TEST(GeneratedBodies, TorusHasRingsTimesSegmentsParticlesOnItsTube) {
         EXPECT_NEAR(std::hypot(from_axis - 0.5f, p.z), 0.2f, 1e-6f);
     }
     EXPECT_TRUE(is_generated("torus:100x100"));
-    EXPECT_EQ(load_mesh("torus:12x7").positions, torus.positions);  // by name, from anywhere
+    EXPECT_EQ(open_mesh("torus:12x7").positions, torus.positions);  // by name, from anywhere
 }
 
 TEST(GeneratedBodies, LatticeIsACubeOfGridPoints) {

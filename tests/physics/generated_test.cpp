@@ -17,8 +17,19 @@ TEST(Generated, NamesAreToldApartFromPaths) {
     EXPECT_FALSE(is_generated(""));
 }
 
+// The choice between a name and a file is open_mesh's: the file reader reads files only, so a
+// name handed to it is a file it cannot read, and a file is read the same either way.
+TEST(Generated, OpenMeshTellsNamesFromFilesAndTheReaderReadsOnlyFiles) {
+    EXPECT_EQ(open_mesh("cloud:50").positions, generated_mesh("cloud:50").positions);
+    EXPECT_REFUSED_NAMING(load_mesh("cloud:50"), "cloud:50", "unsupported mesh format");
+    TempDir dir;
+    const std::string file = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(open_mesh(file).positions, load_mesh(file).positions);
+    EXPECT_EQ(open_mesh(file).particle_count(), 3u);
+}
+
 TEST(Generated, CloudHasNParticlesInsideABallAndIsTheSameEachTime) {
-    const Mesh a = load_mesh("cloud:700"), b = generated_mesh("cloud:700");
+    const Mesh a = open_mesh("cloud:700"), b = generated_mesh("cloud:700");
     ASSERT_EQ(a.particle_count(), 700u);
     EXPECT_EQ(a.triangle_count(), 0u);
     for (std::size_t i = 0; i < a.positions.size(); ++i) {
@@ -29,7 +40,7 @@ TEST(Generated, CloudHasNParticlesInsideABallAndIsTheSameEachTime) {
 
 TEST(Generated, BallHasTenFourToTheSPlusTwoParticlesOnItsSphere) {
     for (int s = 0; s <= 3; ++s) {
-        const Mesh ball = load_mesh("ball:" + std::to_string(s));
+        const Mesh ball = open_mesh("ball:" + std::to_string(s));
         EXPECT_EQ(ball.particle_count(), std::size_t(10 * (1 << (2 * s)) + 2));
         EXPECT_EQ(ball.triangle_count(), std::size_t(20 * (1 << (2 * s))));
         for (const Vec3& p : ball.positions) EXPECT_NEAR(length(p), 0.5f, 1e-6f);
@@ -72,7 +83,7 @@ TEST(Generated, BadNamesAreRefusedWithWhatTheyTake) {
     EXPECT_EQ(message("pile:0"), "pile:0: pile takes 1 to 5000, not 0");
     EXPECT_EQ(message("ball:9"), "ball:9: ball takes 0 to 5 subdivisions (10 * 4^S + 2 particles)");
     EXPECT_EQ(message("cloud:3+ball:1"), "cloud:3+ball:1: one cloud or ball at most (it is the scene's soft body)");
-    EXPECT_THROW(load_mesh("pile:3"), InputError);  // a scene, not a mesh
+    EXPECT_THROW(open_mesh("pile:3"), InputError);  // a scene, not a mesh
 }
 
 }  // namespace

@@ -357,5 +357,26 @@ TEST(Reduce, FortyThousandVertices) {
     expect_rest_shape(full, reduced, "40,000-vertex torus");
 }
 
+// max_particles=all asks for a particle per vertex, which no body gets above kMaxParticles: the
+// world says so in one note naming the cap, the particles used and how to ask for fewer. A
+// budget given as a number, or a mesh under the cap, is what was asked for: no note.
+TEST(Reduce, AllAboveTheCapIsSaidInANote) {
+    const Mesh cloud = points(random_cloud(kMaxParticles + 500, 5, 1.0f), "big cloud");
+    Params all;
+    all.max_particles = 0;
+    const World capped(all, cloud);
+    ASSERT_LE(capped.particle_count(), kMaxParticles);
+    ASSERT_EQ(capped.notes().size(), 1u);
+    const std::string& note = capped.notes()[0];
+    EXPECT_EQ(note, "big cloud: max_particles=all is capped at 20000 particles: its 20500 distinct vertices run on " +
+                        std::to_string(capped.particle_count()) + " (--set max_particles=N, 4 to 20000, for fewer)");
+    EXPECT_EQ(note.find('\n'), std::string::npos);
+
+    Params numbered;
+    numbered.max_particles = 3000;
+    EXPECT_TRUE(World(numbered, cloud).notes().empty());
+    EXPECT_TRUE(World(all, points(random_cloud(500, 5, 1.0f), "small cloud")).notes().empty());
+}
+
 }  // namespace
 }  // namespace softbody::test

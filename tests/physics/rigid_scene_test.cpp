@@ -96,6 +96,46 @@ TEST(RigidScene, SceneWithRigidBodiesAndNoMeshHasNoSoftBody) {
     EXPECT_EQ(world.status(), Status::Ok);
 }
 
+// min_z is the lowest point of any body's own shape, not of the sphere about it: a sphere's
+// bottom, a box's lowest corner as it is turned (a unit cube turned 45 degrees about x stands
+// on an edge sqrt(1/2) below its centre; its bounding sphere reaches sqrt(3)/2), a cylinder's
+// lowest rim vertex, and a soft body's lowest particle, whichever is lowest.
+TEST(RigidScene, MinZIsTheLowestPointOfTheShapesThemselves) {
+    const auto min_z_of = [](const std::string& bodies) {
+        return World(def_of("{\"gravity\": [0, 0, 0], \"rigid_bodies\": [" + bodies + "]}")).min_z();
+    };
+    EXPECT_NEAR(min_z_of("{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.3, \"position\": [0, 0, 2]}"), 1.7,
+                1e-6);
+    EXPECT_NEAR(min_z_of("{\"name\": \"crate\", \"shape\": \"box\", \"size\": [1, 2, 0.5], \"position\": [0, 0, 1]}"),
+                0.75, 1e-6);
+    EXPECT_NEAR(min_z_of("{\"name\": \"cube\", \"shape\": \"box\", \"size\": [1, 1, 1], \"position\": [0, 0, 2],"
+                         " \"rotation\": [45, 0, 0]}"),
+                2.0 - std::sqrt(0.5), 1e-6);
+    // Lying on its side (its axis turned from z to y): a rim vertex straight down, r below.
+    EXPECT_NEAR(min_z_of("{\"name\": \"can\", \"shape\": \"cylinder\", \"radius\": 0.2, \"height\": 1,"
+                         " \"position\": [0, 0, 0.5], \"rotation\": [90, 0, 0]}"),
+                0.3, 1e-6);
+    // Several bodies: the lowest of them; a soft body's particles count too.
+    EXPECT_NEAR(min_z_of("{\"name\": \"a\", \"shape\": \"sphere\", \"radius\": 0.5, \"position\": [0, 0, 3]},"
+                         "{\"name\": \"b\", \"shape\": \"box\", \"size\": [4, 4, 0.2], \"position\": [0, 0, 1.5]}"),
+                1.4, 1e-6);
+    const World mixed(def_of("{\"mesh\": \"cloud:50\", \"init_height\": 0.2, \"rigid_bodies\": [{\"name\": \"ball\","
+                             " \"shape\": \"sphere\", \"radius\": 0.3, \"position\": [3, 0, 2]}]}"));
+    float lowest_particle = mixed.positions()[0].z;
+    for (std::size_t i = 0; i < mixed.particle_count(); ++i) lowest_particle = std::min(lowest_particle, mixed.positions()[i].z);
+    EXPECT_EQ(mixed.min_z(), lowest_particle);
+}
+
+// Boxes and balls settled in their bin on the ground: nothing is below the ground but what the
+// contacts let a body sink (0.2 mm is left to the position pass), and the bin's fixed walls
+// stand on it. (Their bounding spheres reached 0.63 m below it.)
+TEST(RigidScene, APileAtRestReportsTheGroundAsItsLowestPoint) {
+    World world(make_world_def(load_scene("boxes:30")));
+    world.run(150);
+    ASSERT_EQ(world.status(), Status::Ok);
+    EXPECT_NEAR(world.min_z(), 0.0, 1e-3);
+}
+
 // --- One line naming the body and the key ------------------------------------------------------
 
 TEST(RigidScene, BadBodiesAreRefusedNamingBodyAndKey) {

@@ -103,6 +103,11 @@ struct SurfacePoint {
 std::optional<SurfacePoint> point_contact(const CollisionShape& shape, const Pose& pose, const Vec3d& p,
                                           double margin);
 
+// The height of the shape's lowest point at `pose` (m): its support point along -z. A sphere's
+// centre less its radius; a hull's lowest vertex as the pose turns and places it (a convex
+// hull's lowest point is always one of its vertices). What the world reports as min_z.
+double lowest_z(const CollisionShape& shape, const Pose& pose);
+
 // Where the segment p0 -> p1 first enters the shape: p0 + t (p1 - p0) with t in [0, 1], the
 // surface's outward normal there. Empty when it misses, and when p0 is already inside (no
 // entry: point_contact is the question then). A segment that starts on the surface and goes in

@@ -40,6 +40,11 @@ bool is_generated(std::string_view name);
 // The mesh a name makes ("cloud:N", "ball:S", "torus:RxS", "lattice:A"); InputError for a count out of range or a scene-only name.
 Mesh generated_mesh(std::string_view name);
 
+// A mesh by the name a scene or --mesh gives: a generated one when the name has that form
+// (generated_mesh), else the file at that path (load_mesh). The one place that tells the two
+// apart, so the file reader reads files and knows no names.
+Mesh open_mesh(const std::string& name);
+
 // The scene a name makes, over `base` (its world keys); InputError as above.
 Scene generated_scene(std::string_view name, const Scene& base = {});
 

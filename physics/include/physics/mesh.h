@@ -66,6 +66,7 @@ struct Mesh {
 };
 
 // Loads an OBJ (read by tinyobjloader) or an OFF file, chosen by the extension, and welds it.
+// Files only: a generated name (cloud:N, ...) is open_mesh's to tell apart (generated.h).
 // Throws InputError with the file (and line) for a missing, unreadable, non-regular (a folder,
 // a pipe, a device) or malformed file, or for a mesh without usable vertices, with more than
 // kMaxMeshParticles particles or more than kMaxTriangles triangles.

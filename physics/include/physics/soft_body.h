@@ -100,6 +100,12 @@ struct SoftBody {
 // Throws InputError when the budget cannot hold the mesh (max_particles below 4).
 void build_particles(SoftBody& body);
 
+// What the user should hear about the particle budget, or "" when the body runs on what it asked
+// for: `max_particles` all (0) promises a particle per vertex, but no body runs on more than
+// kMaxParticles, so a larger mesh is reduced to at most that many. One line: the cap, the
+// particles used, and how to ask for fewer. (A budget given as a number is kept as asked.)
+std::string particle_cap_note(const SoftBody& body);
+
 // The simulated particle a vertex of body.mesh moves with: its own, or, when the body is
 // reduced and the vertex's particle was dropped, the one of its three it follows most.
 std::uint32_t particle_of_vertex(const SoftBody& body, std::uint32_t vertex);

@@ -222,7 +222,7 @@ public:
     // --- Diagnostics (energy.cpp, stability.cpp) ----------------------------------------------
     Energy energy();
     Vec3 center_of_mass() const;  // of the first soft body
-    float min_z() const;          // of the first soft body
+    float min_z() const;          // the lowest point of any body: particle, sphere or hull vertex
     Stability stability() const;  // the least stable soft body's
     // Substeps of the last tick: the springs' need (stability), the rigid bodies' turns, or at
     // least kContactSubsteps in a tick with contacts.
