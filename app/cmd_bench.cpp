@@ -10,6 +10,8 @@
 // It times the pair kernel alone for every tile variant and gives each its fraction of the
 // peak, then searches the largest cloud that still runs in real time. The frame side (streaming
 // positions and normals) is `softbody render --bench`'s, which times the renderer's own code.
+// Last, "rigid bodies at scale": piles of boxes and balls and pyramids of boxes timed over whole
+// runs, beside the same scenes in Bullet when its peer, softbody_peer_bullet, was built.
 //
 // Every measurement runs in a child process of its own, so each row's peak memory
 // (getrusage's ru_maxrss) is that row's alone.
@@ -73,8 +75,10 @@ constexpr const char* kUsage =
     "  --no-scale        skip \"rigid bodies at scale\": piles and pyramids timed over whole runs, beside\n"
     "                    Bullet when its peer (softbody_peer_bullet) was built\n"
     "  --scale-only      run only that section\n"
-    "  --scale-scenes    its scenes (default boxes:100,boxes:1000,boxes:3000,pyramid:10,pyramid:20)\n"
-    "  --scale-seconds   simulated seconds of every one of its runs (default 10; 3 for pyramid:20 and up)\n"
+    "  --scale-scenes    its scenes (default boxes:100,boxes:1000,boxes:3000,pyramid:10,pyramid:20;\n"
+    "                    --quick boxes:100,pyramid:10)\n"
+    "  --scale-seconds   simulated seconds of every one of its runs (default 10, 3 for pyramid:20 and up;\n"
+    "                    --quick 0.4)\n"
     "  --no-peer         leave the peer out of it even where it was built";
 
 using Clock = std::chrono::steady_clock;
@@ -828,7 +832,7 @@ int bench_command(int argc, char** argv) {
     Args args(argc, argv, 2);
     bool quick = false, json = false, meshes = true, bodies = true, search = true, kernels = true;
     bool scale = true, scale_only = false, use_peer = true;
-    std::vector<std::string> scale_scenes = kScaleScenes;
+    std::vector<std::string> scale_scenes;
     double scale_seconds = 0.0;  // 0: each scene's default
     std::vector<std::size_t> sizes;
     double budget = -1.0;
@@ -865,6 +869,9 @@ int bench_command(int argc, char** argv) {
     if (reference_max < 0) reference_max = quick ? 1000 : 10000;
     const std::size_t mesh_max = quick ? 3000 : kMaxParticles;
     if (scale_only && !scale) throw UsageError("--scale-only and --no-scale: choose one");
+    // --quick: a smoke of the section, two of its scenes for 0.4 s each, unless told otherwise.
+    if (scale_scenes.empty()) scale_scenes = quick ? std::vector<std::string>{"boxes:100", "pyramid:10"} : kScaleScenes;
+    if (quick && scale_seconds == 0.0) scale_seconds = 0.4;
     if (scale_only) sizes.clear(), kernels = meshes = bodies = search = false;
     for (const std::string& name : scale_scenes) {
         // Refused here, in one line, rather than in every child that would build it.
