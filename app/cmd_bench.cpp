@@ -567,6 +567,17 @@ ScaleRow softbody_row(const std::string& scene, const ScaleRun& r) {
     return row;
 }
 
+// The machine's load average over the last minute (/proc/loadavg), or -1: the section prints it
+// before and after, since other work on the machine shows in whole-run times.
+double load_average() {
+    std::FILE* file = std::fopen("/proc/loadavg", "r");
+    if (!file) return -1.0;
+    double load = -1.0;
+    if (std::fscanf(file, "%lf", &load) != 1) load = -1.0;
+    std::fclose(file);
+    return load;
+}
+
 // The peer beside this executable, if it was built: its path, or empty.
 std::string find_peer() {
     std::error_code error;
@@ -729,6 +740,7 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
                                      const std::vector<int>& thread_counts, bool use_peer, bool json) {
     const std::string peer = use_peer ? find_peer() : std::string();
     std::ostream& log = json ? std::cerr : std::cout;
+    const double load_before = load_average();
     if (!json) {
         std::cout << "\nrigid bodies at scale: each scene simulated for " << (seconds_override > 0.0 ? sig3(seconds_override) : "10")
                   << " s" << (seconds_override > 0.0 ? "" : " (3 s for pyramid:20)")
@@ -776,7 +788,10 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
         }
         return nullptr;
     };
+    const double load_after = load_average();
     if (!json) {
+        std::printf("\nload average (1 min) %.2f before the section, %.2f after, on %d hardware threads\n", load_before,
+                    load_after, hardware_threads());
         auto head = [&](const char* first) {
             std::cout << "| scene | bodies | simulated s |";
             for (const auto& [engine, config] : columns) std::cout << " " << (engine == "bullet" ? "Bullet" : "softbody") << ", " << config << " |";
@@ -820,6 +835,8 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
     nlohmann::ordered_json out = {
         {"seconds_override", seconds_override > 0.0 ? nlohmann::ordered_json(seconds_override) : nlohmann::ordered_json()},
         {"moving_speed_mps", kMovingSpeed},
+        {"load_average_before", load_before},
+        {"load_average_after", load_after},
         {"peer", peer.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(peer)},
         {"rows", nlohmann::ordered_json::array()}};
     for (const ScaleRow& r : rows) out["rows"].push_back(scale_row_json(r));
