@@ -15,8 +15,8 @@
 //
 // Every measurement runs in a child process of its own, so each row's peak memory
 // (getrusage's ru_maxrss) is that row's alone.
-#include <sys/resource.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
