@@ -751,8 +751,8 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
         if (!peer.empty()) {
             std::cout << "Bullet runs: " << peer << " (the same scenes built in Bullet; see README, \"Speed\").\n";
         } else if (use_peer) {
-            std::cout << "Bullet comparison skipped: softbody_peer_bullet was not built beside this executable. To get it:\n"
-                         "sudo apt install libbullet-dev, then rebuild (cmake -S . -B build && cmake --build build).\n";
+            std::cout << "Bullet comparison skipped: softbody_peer_bullet was not built beside this executable (to get it: "
+                         "sudo apt install libbullet-dev, then rebuild)\n";
         } else {
             std::cout << "Bullet comparison left out (--no-peer).\n";
         }
@@ -1122,10 +1122,6 @@ int bench_command(int argc, char** argv) {
         }
     }
 
-    // --- Rigid bodies at scale, beside the peer ---------------------------------------------------
-    nlohmann::ordered_json scale_json = nullptr;
-    if (scale) scale_json = scale_section(scale_scenes, scale_seconds, thread_counts, use_peer, json);
-
     // --- Memory ---------------------------------------------------------------------------------
     nlohmann::ordered_json memory = nlohmann::ordered_json::array();
     if (!json && !scale_only) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
@@ -1147,6 +1143,11 @@ int bench_command(int argc, char** argv) {
         std::cout << "\nmeshes not benched:\n";
         for (const std::string& s : skipped) std::cout << "  " << s << "\n";
     }
+
+    // --- Rigid bodies at scale, beside the peer ---------------------------------------------------
+    nlohmann::ordered_json scale_json = nullptr;
+    if (scale) scale_json = scale_section(scale_scenes, scale_seconds, thread_counts, use_peer, json);
+
     const double total = seconds_since(bench_start);
     if (json && scale_only) {
         const nlohmann::ordered_json out = {{"dt", dt}, {"hardware_threads", hardware_threads()}, {"scale", scale_json},
