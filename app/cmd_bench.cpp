@@ -10,9 +10,12 @@
 // It times the pair kernel alone for every tile variant and gives each its fraction of the
 // peak, then searches the largest cloud that still runs in real time. The frame side (streaming
 // positions and normals) is `softbody render --bench`'s, which times the renderer's own code.
+// Last, "rigid bodies at scale": piles of boxes and balls and pyramids of boxes timed over whole
+// runs, beside the same scenes in Bullet when its peer, softbody_peer_bullet, was built.
 //
 // Every measurement runs in a child process of its own, so each row's peak memory
 // (getrusage's ru_maxrss) is that row's alone.
+#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,6 +32,7 @@
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -42,6 +46,9 @@
 #include "physics/pair_forces.h"
 #include "physics/scene_io.h"
 #include "physics/world.h"
+#include "soundness.h"
+
+extern char** environ;
 
 namespace softbody::app {
 
@@ -160,7 +167,9 @@ struct Measurement {
 };
 
 // Runs `measure` in a child process and returns what it measured, with the child's peak RSS.
-Measurement in_child(const std::function<Measurement()>& measure) {
+// T is plain data with `measured`, `note` and `peak_kb` (Measurement, ScaleRun).
+template <class T>
+T in_child(const std::function<T()>& measure) {
     int fd[2];
     if (pipe(fd) != 0) throw std::runtime_error("bench: pipe failed");
     std::cout.flush();
@@ -169,7 +178,7 @@ Measurement in_child(const std::function<Measurement()>& measure) {
     if (pid < 0) throw std::runtime_error("bench: fork failed");
     if (pid == 0) {
         close(fd[0]);
-        Measurement m;
+        T m;
         try {
             m = measure();
         } catch (const std::exception& e) {
@@ -189,7 +198,7 @@ Measurement in_child(const std::function<Measurement()>& measure) {
         _exit(0);
     }
     close(fd[1]);
-    Measurement m;
+    T m;
     char* bytes = reinterpret_cast<char*>(&m);
     std::size_t got = 0;
     for (;;) {
@@ -203,7 +212,7 @@ Measurement in_child(const std::function<Measurement()>& measure) {
     int status = 0;
     waitpid(pid, &status, 0);
     if (got != sizeof m) {
-        m = Measurement{};
+        m = T{};
         std::snprintf(m.note, sizeof m.note, "the measuring process died (%s)",
                       WIFSIGNALED(status) ? strsignal(WTERMSIG(status)) : "no result");
     }
@@ -236,7 +245,7 @@ enum class Kernel { Fast, Reference, Baseline };
 // the World with the fast or the reference kernel, or the baseline on the scene's soft body, in
 // a child. `settle` ticks run first, untimed (a pile's second of fall: the contacts busy).
 Measurement measure(Kernel kernel, const std::string& scene_name, int threads, double budget, int settle = 0) {
-    return in_child([&]() {
+    return in_child<Measurement>([&]() {
         Measurement m;
         const Scene scene = load_scene(scene_name);
         World world(make_world_def(scene), WorldOptions{threads, kernel == Kernel::Reference});
@@ -286,7 +295,7 @@ std::string cloud(std::size_t n) { return "cloud:" + std::to_string(n); }
 // The pair kernel alone, one tile variant: compute() on a cloud displaced from rest and moving,
 // no tick around it. calls/ticks are force evaluations here.
 Measurement measure_kernel(PairKernelVariant variant, std::size_t n, int threads, double budget) {
-    return in_child([&]() {
+    return in_child<Measurement>([&]() {
         Measurement m;
         const Mesh mesh = generated_mesh(cloud(n));
         std::mt19937 rng(7u);
@@ -415,6 +424,398 @@ const char* width_of(PairKernelVariant variant) {
     }
 }
 
+// =============================================================================================
+// Rigid bodies at scale: the five scenes, softbody against its peer
+// =============================================================================================
+// Each run simulates a whole stretch (10 s, 3 s for the 20-layer pyramid) and gives ms per
+// tick over all of it, the wall clock of the ticks alone (not a median after settling: falling,
+// piling up and resting all count), then the soundness figures of app/soundness.h. softbody
+// runs in a child process as the rows above; the peer (softbody_peer_bullet, built where Bullet
+// is installed) is its own executable beside this one.
+
+const std::vector<std::string> kScaleScenes{"boxes:100", "boxes:1000", "boxes:3000", "pyramid:10", "pyramid:20"};
+
+// Simulated seconds of a scene's run: 10, and 3 for pyramids of 20 layers or more (softbody's
+// 20-layer pyramid takes most of a second a tick today).
+double default_scale_seconds(const std::string& scene) {
+    if (is_pyramid(scene)) {
+        const std::string layers = scene.substr(std::string("pyramid:").size());
+        if (!layers.empty() && layers.find_first_not_of("0123456789") == std::string::npos && std::stoi(layers) >= 20) return 3.0;
+    }
+    return 10.0;
+}
+
+// One softbody run. Plain data: it crosses a pipe from the child process that measured it.
+struct ScaleRun {
+    int measured = 0;
+    int diverged = 0;
+    int threads = 1;
+    int ticks = 0;
+    int bodies = 0;
+    double seconds = 0.0;
+    double ms_per_tick = 0.0;
+    int has_ground = 0;
+    double penetration_m = 0.0;
+    int moving = 0;
+    double kinetic_J = 0.0;
+    int has_top = 0;
+    double top_moved_m = 0.0;
+    long peak_kb = 0;
+    char note[240] = {};
+};
+
+ScaleRun measure_scale(const std::string& scene_name, int threads, double seconds) {
+    return in_child<ScaleRun>([&]() {
+        ScaleRun r;
+        const Scene scene = load_scene(scene_name);
+        World world(make_world_def(scene), WorldOptions{threads, false});
+        r.threads = world.threads();
+        r.ticks = std::max(1, int(std::lround(seconds / double(world.params().dt))));
+        Clock::duration spent{};
+        int done = 0;
+        for (; done < r.ticks && world.status() == Status::Ok; ++done) {
+            const auto t0 = Clock::now();
+            world.tick();
+            spent += Clock::now() - t0;
+        }
+        r.ms_per_tick = std::chrono::duration<double, std::milli>(spent).count() / std::max(1, done);
+        r.seconds = std::round(double(done) * double(world.params().dt) * 1e6) / 1e6;  // 0.2, not float's 0.19999999
+        if (world.status() != Status::Ok) {
+            r.diverged = 1;
+            std::snprintf(r.note, sizeof r.note, "%s", world.divergence().c_str());
+        }
+        std::vector<RigidBody> defs;
+        std::vector<BodyNow> now;
+        for (std::size_t i = 0; i < world.rigid_body_count(); ++i) {
+            const RigidMotion m = world.rigid_motion(i);
+            defs.push_back(world.rigid_body(i));
+            now.push_back({m.x, m.R, m.v, m.omega, lowest_point(world.rigid_body(i), m.x, m.R)});
+        }
+        const Params& p = world.params();
+        const Soundness s = soundness(defs, now, p.ground ? std::optional<double>(p.ground_height) : std::nullopt,
+                                      is_pyramid(scene_name));
+        r.bodies = s.bodies;
+        r.has_ground = s.penetration_m.has_value();
+        r.penetration_m = s.penetration_m.value_or(0.0);
+        r.moving = s.moving;
+        r.kinetic_J = s.kinetic_J;
+        r.has_top = s.top_moved_m.has_value();
+        r.top_moved_m = s.top_moved_m.value_or(0.0);
+        r.measured = 1;
+        return r;
+    });
+}
+
+// One row of the section, softbody's or the peer's.
+struct ScaleRow {
+    std::string scene, engine, config;  // engine "softbody" or "bullet"; config "1 thread", "10 iterations", ...
+    std::string status = "failed", note;
+    int bodies = 0, ticks = 0;
+    double seconds = 0.0, ms_per_tick = 0.0;
+    std::optional<double> penetration_m, top_moved_m;
+    int moving = 0;
+    double kinetic_J = 0.0;
+    std::optional<int> threads, sleeping, steps;
+    long peak_kb = 0;
+};
+
+ScaleRow softbody_row(const std::string& scene, const ScaleRun& r) {
+    ScaleRow row;
+    row.scene = scene;
+    row.engine = "softbody";
+    row.config = std::to_string(r.threads) + (r.threads > 1 ? " threads" : " thread");
+    row.threads = r.threads;
+    row.note = r.note;
+    if (!r.measured) return row;
+    row.status = r.diverged ? "diverged" : "ok";
+    row.bodies = r.bodies;
+    row.ticks = r.ticks;
+    row.seconds = r.seconds;
+    row.ms_per_tick = r.ms_per_tick;
+    if (r.has_ground) row.penetration_m = r.penetration_m;
+    if (r.has_top) row.top_moved_m = r.top_moved_m;
+    row.moving = r.moving;
+    row.kinetic_J = r.kinetic_J;
+    row.peak_kb = r.peak_kb;
+    return row;
+}
+
+// The machine's load average over the last minute (/proc/loadavg), or -1: the section prints it
+// before and after, since other work on the machine shows in whole-run times.
+double load_average() {
+    std::FILE* file = std::fopen("/proc/loadavg", "r");
+    if (!file) return -1.0;
+    double load = -1.0;
+    if (std::fscanf(file, "%lf", &load) != 1) load = -1.0;
+    std::fclose(file);
+    return load;
+}
+
+// The peer beside this executable, if it was built: its path, or empty.
+std::string find_peer() {
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return {};
+    const std::filesystem::path peer = self.parent_path() / "softbody_peer_bullet";
+    if (access(peer.c_str(), X_OK) != 0) return {};
+    return peer.string();
+}
+
+// Runs the peer for one scene and one configuration; its stdout comes back through a pipe, its
+// stderr goes to ours (a refusal says why there).
+ScaleRow run_peer(const std::string& peer, const std::string& scene, const char* config, const char* label, double seconds) {
+    ScaleRow row;
+    row.scene = scene;
+    row.engine = "bullet";
+    row.config = label;
+    char seconds_text[32];
+    std::snprintf(seconds_text, sizeof seconds_text, "%.17g", seconds);
+    std::vector<std::string> args{peer, "--scene", scene, "--config", config, "--seconds", seconds_text};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    int fd[2];
+    if (pipe(fd) != 0) throw std::runtime_error("bench: pipe failed");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fd[1], 1);
+    posix_spawn_file_actions_addclose(&actions, fd[0]);
+    posix_spawn_file_actions_addclose(&actions, fd[1]);
+    std::cout.flush();
+    std::fflush(stdout);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, peer.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(fd[1]);
+    std::string out;
+    char buffer[4096];
+    for (;;) {
+        const ssize_t n = read(fd[0], buffer, sizeof buffer);
+        if (n > 0) out.append(buffer, std::size_t(n));
+        else if (n < 0 && errno == EINTR) continue;
+        else break;
+    }
+    close(fd[0]);
+    if (spawned != 0) {
+        row.note = std::string("could not start the peer: ") + std::strerror(spawned);
+        return row;
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        row.note = WIFSIGNALED(status) ? std::string("the peer died (") + strsignal(WTERMSIG(status)) + ")"
+                                       : "the peer exited with " + std::to_string(WEXITSTATUS(status)) + " (its message is above)";
+        return row;
+    }
+    try {
+        const nlohmann::json j = nlohmann::json::parse(out);
+        row.status = j.at("status").get<std::string>();
+        row.bodies = j.at("bodies").get<int>();
+        row.ticks = j.at("ticks").get<int>();
+        row.seconds = j.at("seconds").get<double>();
+        row.ms_per_tick = j.at("ms_per_tick").get<double>();
+        if (!j.at("penetration_m").is_null()) row.penetration_m = j.at("penetration_m").get<double>();
+        if (!j.at("top_moved_m").is_null()) row.top_moved_m = j.at("top_moved_m").get<double>();
+        row.moving = j.at("moving").get<int>();
+        row.kinetic_J = j.at("kinetic_J").get<double>();
+        row.sleeping = j.at("sleeping").get<int>();
+        row.steps = j.at("steps").get<int>();
+    } catch (const std::exception& e) {
+        row.status = "failed";
+        row.note = std::string("the peer's output did not read as its JSON: ") + e.what();
+    }
+    return row;
+}
+
+nlohmann::ordered_json scale_row_json(const ScaleRow& r) {
+    nlohmann::ordered_json j = {{"scene", r.scene}, {"engine", r.engine}, {"config", r.config}};
+    if (r.threads) j["threads"] = *r.threads;
+    j["status"] = r.status;
+    if (r.status != "failed") {
+        j["bodies"] = r.bodies;
+        j["seconds"] = r.seconds;
+        j["ticks"] = r.ticks;
+        if (r.steps) j["steps"] = *r.steps;
+        j["ms_per_tick"] = r.ms_per_tick;
+        j["penetration_m"] = r.penetration_m ? nlohmann::ordered_json(*r.penetration_m) : nlohmann::ordered_json();
+        j["moving"] = r.moving;
+        j["kinetic_J"] = r.kinetic_J;
+        j["top_moved_m"] = r.top_moved_m ? nlohmann::ordered_json(*r.top_moved_m) : nlohmann::ordered_json();
+        if (r.sleeping) j["sleeping"] = *r.sleeping;
+        if (r.peak_kb) j["peak_memory_mb"] = double(r.peak_kb) * 1024.0 / 1e6;
+    }
+    if (!r.note.empty()) j["note"] = r.note;
+    return j;
+}
+
+// Three significant figures, whole numbers from 1,000 up: 0.352, 20.7, 726, 1404.
+std::string sig3(double value) {
+    char text[32];
+    if (std::abs(value) >= 1000.0) std::snprintf(text, sizeof text, "%.0f", value);
+    else std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+}
+
+// A length in mm to the hundredth (what the tables need to tell 0.2 mm of slop from none),
+// three figures from 10 mm up.
+std::string mm(double metres) {
+    char text[32];
+    const double value = metres * 1e3;
+    if (std::abs(value) >= 10.0) return sig3(value);
+    std::snprintf(text, sizeof text, "%.2f", value);
+    return text;
+}
+
+void print_scale_header() {
+    std::printf("%-12s %-23s %6s %5s %6s %10s %8s %7s %10s %8s\n", "scene", "run", "bodies", "s", "ticks", "ms/tick",
+                "depth mm", "moving", "KE left J", "top mm");
+}
+
+void print_scale_row(const ScaleRow& r) {
+    const std::string run = r.engine + ", " + r.config;
+    if (r.status == "failed") {
+        std::printf("%-12s %-23s  failed: %s\n", r.scene.c_str(), run.c_str(), r.note.c_str());
+        return;
+    }
+    const std::string depth = r.penetration_m ? mm(*r.penetration_m) : "-", top = r.top_moved_m ? mm(*r.top_moved_m) : "-";
+    std::printf("%-12s %-23s %6d %5.3g %6d %10.4g %8s %7d %10.3g %8s%s\n", r.scene.c_str(), run.c_str(), r.bodies,
+                r.seconds, r.ticks, r.ms_per_tick, depth.c_str(), r.moving, r.kinetic_J, top.c_str(),
+                r.status == "diverged" ? "  DIVERGED" : "");
+}
+
+
+std::vector<std::string> parse_scenes(std::string_view text) {
+    std::vector<std::string> scenes;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string_view name = text.substr(start, comma - start);
+        if (name.empty()) throw UsageError("--scale-scenes: an empty name in '" + std::string(text) + "'");
+        scenes.emplace_back(name);
+        start = comma + 1;
+    }
+    return scenes;
+}
+
+// The peer's three configurations, as the table has them.
+struct PeerConfig {
+    const char* key;
+    const char* label;
+};
+constexpr PeerConfig kPeerConfigs[] = {
+    {"iterations", "10 iterations"}, {"substeps", "2 substeps"}, {"sleeping", "sleeping on"}};
+
+// The section: every scene at each thread count, then the peer's three runs of it, each row as
+// it comes; then two tables, ms per tick side by side and the soundness figures, in Markdown (the
+// README's table is this output). Returns the rows as JSON.
+nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, double seconds_override,
+                                     const std::vector<int>& thread_counts, bool use_peer, bool json) {
+    const std::string peer = use_peer ? find_peer() : std::string();
+    std::ostream& log = json ? std::cerr : std::cout;
+    const double load_before = load_average();
+    if (!json) {
+        std::cout << "\nrigid bodies at scale: each scene simulated for " << (seconds_override > 0.0 ? sig3(seconds_override) : "10")
+                  << " s" << (seconds_override > 0.0 ? "" : " (3 s for pyramid:20)")
+                  << ", ms per tick over the whole run (wall clock of the ticks only, dt 0.02 s);\n"
+                     "after it: depth = the deepest point of any body below the ground (its collision shape's support\n"
+                     "point), moving = bodies with a point faster than 1 cm/s (|v| + |w| r), KE = kinetic energy left,\n"
+                     "top = how far a pyramid's top box went from its start.\n";
+        if (!peer.empty()) {
+            std::cout << "Bullet runs: " << peer << " (the same scenes built in Bullet; see README, \"Speed\").\n";
+        } else if (use_peer) {
+            std::cout << "Bullet comparison skipped: softbody_peer_bullet was not built beside this executable (to get it: "
+                         "sudo apt install libbullet-dev, then rebuild)\n";
+        } else {
+            std::cout << "Bullet comparison left out (--no-peer).\n";
+        }
+        std::cout << "\n";
+        print_scale_header();
+    } else if (peer.empty() && use_peer) {
+        std::cerr << "Bullet comparison skipped: softbody_peer_bullet was not built (sudo apt install libbullet-dev, rebuild)\n";
+    }
+    std::vector<ScaleRow> rows;
+    for (const std::string& scene : scenes) {
+        const double seconds = seconds_override > 0.0 ? seconds_override : default_scale_seconds(scene);
+        auto add = [&](ScaleRow row) {
+            if (!json) print_scale_row(row);
+            else log << "  " << row.scene << ", " << row.engine << ", " << row.config << ": " << sig3(row.ms_per_tick) << " ms/tick\n";
+            std::cout.flush();
+            rows.push_back(std::move(row));
+        };
+        for (int t : thread_counts) add(softbody_row(scene, measure_scale(scene, t, seconds)));
+        if (!peer.empty()) {
+            for (const PeerConfig& c : kPeerConfigs) add(run_peer(peer, scene, c.key, c.label, seconds));
+        }
+    }
+
+    // The columns of the side-by-side tables, in the order.
+    std::vector<std::pair<std::string, std::string>> columns;  // engine, config
+    for (int t : thread_counts) columns.emplace_back("softbody", std::to_string(t) + (t > 1 ? " threads" : " thread"));
+    if (!peer.empty()) {
+        for (const PeerConfig& c : kPeerConfigs) columns.emplace_back("bullet", c.label);
+    }
+    auto find = [&](const std::string& scene, const std::pair<std::string, std::string>& column) -> const ScaleRow* {
+        for (const ScaleRow& r : rows) {
+            if (r.scene == scene && r.engine == column.first && r.config == column.second) return &r;
+        }
+        return nullptr;
+    };
+    const double load_after = load_average();
+    if (!json) {
+        std::printf("\nload average (1 min) %.2f before the section, %.2f after, on %d hardware threads\n", load_before,
+                    load_after, hardware_threads());
+        auto head = [&](const char* first) {
+            std::cout << "| scene | bodies | simulated s |";
+            for (const auto& [engine, config] : columns) std::cout << " " << (engine == "bullet" ? "Bullet" : "softbody") << ", " << config << " |";
+            std::cout << "\n|---|---:|---:|";
+            for (std::size_t i = 0; i < columns.size(); ++i) std::cout << (first[0] == 'r' ? "---:|" : "---|");
+            std::cout << "\n";
+        };
+        std::cout << "\nms per tick, whole run:\n\n";
+        head("r");
+        for (const std::string& scene : scenes) {
+            const ScaleRow* any = find(scene, columns.front());
+            std::cout << "| `" << scene << "` | " << (any ? any->bodies : 0) << " | " << (any ? sig3(any->seconds) : "-") << " |";
+            for (const auto& column : columns) {
+                const ScaleRow* r = find(scene, column);
+                std::cout << " " << (r && r->status == "ok" ? sig3(r->ms_per_tick) : r ? r->status : "-") << " |";
+            }
+            std::cout << "\n";
+        }
+        std::cout << "\nafter the run: deepest point below the ground, bodies still moving, kinetic energy left (and the\n"
+                     "pyramid's top box: how far it went):\n\n";
+        head("l");
+        for (const std::string& scene : scenes) {
+            const ScaleRow* any = find(scene, columns.front());
+            std::cout << "| `" << scene << "` | " << (any ? any->bodies : 0) << " | " << (any ? sig3(any->seconds) : "-") << " |";
+            for (const auto& column : columns) {
+                const ScaleRow* r = find(scene, column);
+                if (!r || r->status == "failed") {
+                    std::cout << " - |";
+                    continue;
+                }
+                std::cout << " " << (r->penetration_m ? mm(*r->penetration_m) + " mm, " : "") << r->moving
+                          << " moving, " << sig3(r->kinetic_J) << " J";
+                if (r->top_moved_m) std::cout << ", top " << mm(*r->top_moved_m) << " mm";
+                if (r->status != "ok") std::cout << " (" << r->status << ")";
+                std::cout << " |";
+            }
+            std::cout << "\n";
+        }
+    }
+
+    nlohmann::ordered_json out = {
+        {"seconds_override", seconds_override > 0.0 ? nlohmann::ordered_json(seconds_override) : nlohmann::ordered_json()},
+        {"moving_speed_mps", kMovingSpeed},
+        {"load_average_before", load_before},
+        {"load_average_after", load_after},
+        {"peer", peer.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(peer)},
+        {"rows", nlohmann::ordered_json::array()}};
+    for (const ScaleRow& r : rows) out["rows"].push_back(scale_row_json(r));
+    return out;
+}
+
 }  // namespace
 
 int bench_command(int argc, char** argv) {
@@ -424,7 +825,9 @@ int bench_command(int argc, char** argv) {
                  "softbody bench");
     configure(app);
     bool quick = false, json = false, no_meshes = false, no_bodies = false, no_search = false, no_kernels = false;
-    std::string sizes_text;
+    bool no_scale = false, scale_only = false, no_peer = false;
+    std::string sizes_text, scale_text;
+    double scale_seconds = 0.0;  // 0: each scene's default
     double budget = -1.0;
     int threads = hardware_threads();
     std::int64_t baseline_max = -1, reference_max = -1;
@@ -442,16 +845,40 @@ int bench_command(int argc, char** argv) {
     app.add_flag("--no-meshes", no_meshes, "skip the bundled meshes (scene files with a soft body and no rigid bodies)");
     app.add_flag("--no-bodies", no_bodies, "skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)");
     app.add_flag("--no-search", no_search, "skip the search for the largest cloud that runs in real time");
+    app.add_flag("--no-scale", no_scale,
+                 "skip \"rigid bodies at scale\": piles and pyramids timed over whole runs, beside Bullet where its peer "
+                 "(softbody_peer_bullet) was built");
+    app.add_flag("--scale-only", scale_only, "run only that section");
+    app.add_option("--scale-scenes", scale_text,
+                   "its scenes (default boxes:100,boxes:1000,boxes:3000,pyramid:10,pyramid:20; --quick boxes:100,pyramid:10)")
+        ->type_name("NAME,...");
+    add_number(app, "--scale-seconds", scale_seconds, 0.02, 3600.0,
+               "simulated seconds of each of its runs (default 10, 3 for pyramid:20 and up; --quick 0.4)")
+        ->type_name("S");
+    app.add_flag("--no-peer", no_peer, "leave the peer out even where it was built");
     app.footer(exit_codes_help(false));
     if (!parse(app, argc, argv, 2)) return kOk;
-    const bool meshes = !no_meshes, bodies = !no_bodies, search = !no_search, kernels = !no_kernels;
+    bool meshes = !no_meshes, bodies = !no_bodies, search = !no_search, kernels = !no_kernels;
+    const bool scale = !no_scale, use_peer = !no_peer;
     std::vector<std::size_t> sizes;
     if (!sizes_text.empty()) sizes = parse_sizes(sizes_text);
+    std::vector<std::string> scale_scenes;
+    if (!scale_text.empty()) scale_scenes = parse_scenes(scale_text);
     if (sizes.empty()) sizes = quick ? std::vector<std::size_t>{500, 1000, 2500} : std::vector<std::size_t>{500, 1000, 2500, 5000, 10000};
     if (budget < 0.0) budget = quick ? 0.15 : 1.0;
     if (baseline_max < 0) baseline_max = quick ? 1000 : 5000;
     if (reference_max < 0) reference_max = quick ? 1000 : 10000;
     const std::size_t mesh_max = quick ? 3000 : kMaxParticles;
+    if (scale_only && !scale) throw UsageError("--scale-only and --no-scale: choose one");
+    // --quick: a smoke of the section, two of its scenes for 0.4 s each, unless told otherwise.
+    if (scale_scenes.empty()) scale_scenes = quick ? std::vector<std::string>{"boxes:100", "pyramid:10"} : kScaleScenes;
+    if (quick && scale_seconds == 0.0) scale_seconds = 0.4;
+    if (scale_only) sizes.clear(), kernels = meshes = bodies = search = false;
+    for (const std::string& name : scale_scenes) {
+        // Refused here, in one line, rather than in every child that would build it.
+        const Scene scene = load_scene(name);
+        if (scene.rigid_bodies.empty()) throw UsageError("--scale-scenes: " + name + " has no rigid bodies");
+    }
 
     const Params defaults = load_scene(cloud(2)).params;  // what a cloud:N scene runs with: Listing 8's constants
     const double dt = defaults.dt;
@@ -459,7 +886,7 @@ int bench_command(int argc, char** argv) {
     const auto bench_start = Clock::now();
     std::ostream& log = json ? std::cerr : std::cout;  // progress goes to stderr with --json
 
-    if (!json) {
+    if (!json && !scale_only) {
         std::cout << "softbody bench: physics only, dt " << dt << " s, k " << defaults.stiffness << " N/m, c "
                   << defaults.damping << " kg/s, m " << defaults.particle_mass
                   << " kg, substeps picked for stability (auto_substeps)\n"
@@ -623,7 +1050,7 @@ int bench_command(int argc, char** argv) {
             ratio_text << line << "\n";
         }
     }
-    if (!json) std::cout << "\nfast kernel against the others (medians from the rows above):\n" << ratio_text.str();
+    if (!json && !scale_only) std::cout << "\nfast kernel against the others (medians from the rows above):\n" << ratio_text.str();
 
     // --- The largest cloud that runs in real time (a tick in at most dt), all threads ----------
     nlohmann::ordered_json real_time = nullptr;
@@ -681,8 +1108,9 @@ int bench_command(int argc, char** argv) {
 
     // --- Memory ---------------------------------------------------------------------------------
     nlohmann::ordered_json memory = nlohmann::ordered_json::array();
-    if (!json) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
+    if (!json && !scale_only) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
     for (std::size_t n : {std::size_t(10000), std::size_t(20000)}) {
+        if (scale_only) break;
         const double mb = 1e6;
         const double kernel = double(PairForceKernel::memory_bytes(n)) / mb;
         const double stored_l0 = double(n) * double(n - 1) / 2.0 * 4.0 / mb;
@@ -699,8 +1127,17 @@ int bench_command(int argc, char** argv) {
         std::cout << "\nmeshes not benched:\n";
         for (const std::string& s : skipped) std::cout << "  " << s << "\n";
     }
+
+    // --- Rigid bodies at scale, beside the peer ---------------------------------------------------
+    nlohmann::ordered_json scale_json = nullptr;
+    if (scale) scale_json = scale_section(scale_scenes, scale_seconds, thread_counts, use_peer, json);
+
     const double total = seconds_since(bench_start);
-    if (json) {
+    if (json && scale_only) {
+        const nlohmann::ordered_json out = {{"dt", dt}, {"hardware_threads", hardware_threads()}, {"scale", scale_json},
+                                            {"wall_seconds", total}};
+        std::cout << out.dump(2) << std::endl;
+    } else if (json) {
         nlohmann::ordered_json rows_json = nlohmann::ordered_json::array();
         for (const Row& r : rows) rows_json.push_back(row_json(r, dt));
         nlohmann::ordered_json out = {
@@ -725,6 +1162,7 @@ int bench_command(int argc, char** argv) {
             {"real_time", real_time},
             {"peak", peak_json},
             {"memory", memory},
+            {"scale", scale_json},
             {"meshes_skipped", skipped},
             {"wall_seconds", total},
         };

@@ -530,3 +530,59 @@ TEST(BadInput, BadLessonKeysNameFileLineAndKey) {
     EXPECT_NE(r.err.find("lesson.json:3: key 'expect': unknown kind 'period'"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
+
+// --- softbody bench: rigid bodies at scale --------------------------------------------------
+// Speed is never asserted; these check that the section runs, says what it measured and is
+// sound on a short drop. They pass with or without the Bullet peer built beside softbody.
+
+TEST(Bench, ScaleOnlyPrintsTheSectionAndSoftbodysRows) {
+    const Result r = run({"bench", "--scale-only", "--scale-scenes", "boxes:100", "--scale-seconds", "0.2", "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_NE(r.out.find("rigid bodies at scale"), std::string::npos) << r.out;
+    // One row per thread count, as it was measured, and the side-by-side table.
+    EXPECT_NE(r.out.find("boxes:100    softbody, 1 thread "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("boxes:100    softbody, 2 threads"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("| `boxes:100` | 100 | 0.2 |"), std::string::npos) << r.out;
+    // Either the peer ran, or the section says how to get it.
+    const bool peer = r.out.find("Bullet runs:") != std::string::npos;
+    const bool skipped = r.out.find("Bullet comparison skipped") != std::string::npos &&
+                         r.out.find("sudo apt install libbullet-dev") != std::string::npos;
+    EXPECT_TRUE(peer != skipped) << r.out;
+    // --scale-only: nothing of the clouds, kernels or memory.
+    EXPECT_EQ(r.out.find("pair kernel alone"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("memory the pair forces need"), std::string::npos) << r.out;
+}
+
+TEST(Bench, ScaleJsonGivesSoundnessFiguresOfAShortDrop) {
+    // 0.2 s after boxes:100 is let go nothing has landed (the lowest layer starts 0.7 m up and
+    // falls 0.2 m): every body moves, none is in the ground, and the energy is the fall's.
+    const Result r = run({"bench", "--scale-only", "--scale-scenes", "boxes:100", "--scale-seconds", "0.2", "--threads", "2",
+                          "--no-peer", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    const json& rows = j.at("scale").at("rows");
+    ASSERT_EQ(rows.size(), 2u) << r.out;
+    for (const json& row : rows) {
+        EXPECT_EQ(row.at("engine"), "softbody");
+        EXPECT_EQ(row.at("status"), "ok");
+        EXPECT_EQ(row.at("bodies"), 100);
+        EXPECT_EQ(row.at("ticks"), 10);
+        EXPECT_EQ(row.at("moving"), 100);
+        EXPECT_EQ(row.at("penetration_m").get<double>(), 0.0);
+        EXPECT_GT(row.at("kinetic_J").get<double>(), 0.0);
+        EXPECT_TRUE(row.at("top_moved_m").is_null());
+        EXPECT_GT(row.at("ms_per_tick").get<double>(), 0.0);
+    }
+    EXPECT_EQ(rows[0].at("threads"), 1);
+    EXPECT_EQ(rows[1].at("threads"), 2);
+    // The same world at either thread count: the same energy to the bit.
+    EXPECT_EQ(rows[0].at("kinetic_J").get<double>(), rows[1].at("kinetic_J").get<double>());
+}
+
+TEST(BadInput, BenchScaleOptionsAreRefusedInOneLine) {
+    expect_refused({"bench", "--scale-only", "--scale-scenes", "cloud:100"}, {"--scale-scenes", "cloud:100", "no rigid bodies"});
+    expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:100,"}, {"--scale-scenes", "empty"});
+    expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:lots"}, {"boxes:lots"});
+    expect_refused({"bench", "--scale-only", "--no-scale"}, {"--scale-only", "--no-scale"});
+    expect_refused({"bench", "--scale-seconds", "0"}, {"--scale-seconds"});
+}
