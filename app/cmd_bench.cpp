@@ -429,6 +429,7 @@ const char* width_of(PairKernelVariant variant) {
     switch (variant) {
         case PairKernelVariant::Avx512: return "512-bit";
         case PairKernelVariant::Avx2: return "256-bit";
+        case PairKernelVariant::WasmSimd128: return "128-bit";
         default: return "scalar";
     }
 }
@@ -507,7 +508,7 @@ int bench_command(int argc, char** argv) {
     // --- The pair kernel alone, every tile variant this CPU runs, against this CPU's peak ---------
     const std::vector<PairKernelVariant> variants = [] {
         std::vector<PairKernelVariant> here;
-        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
             if (PairForceKernel::supported(v)) here.push_back(v);
         }
         return here;

@@ -7,7 +7,6 @@
 
 #include <exception>
 #include <iostream>
-#include <memory>
 
 namespace softbody::app::browser {
 
@@ -25,10 +24,9 @@ void call_frame(void* argument) {
     } catch (const std::exception& e) {
         std::cerr << "softbody: " << e.what() << std::endl;
     }
-    if (!more) {
-        emscripten_cancel_main_loop();
-        delete frame;  // and with it what it held: the session is over
-    }
+    // Once over, the session is kept, not destroyed: the page goes on showing its last frame
+    // (closing the window would take the canvas's picture with it).
+    if (!more) emscripten_cancel_main_loop();
 }
 
 }  // namespace

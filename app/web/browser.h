@@ -11,6 +11,7 @@ namespace softbody::app::browser {
 // Calls frame() once per animation frame of the page until it returns false (or throws: the
 // error goes to the console as one line), and returns at once: the page's loop goes on after
 // this function and its callers have returned, so anything frame() uses must live on the heap.
+// frame is kept after that (with what it holds), so that the page goes on showing the last frame.
 void run_frames(std::function<bool()> frame);
 
 // Gives the window (the page's canvas) the size the page lays it out at, in CSS pixels, when

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "physics/portable_math.h"
+
 namespace softbody {
 
 namespace {
@@ -221,7 +223,7 @@ void solve_contact_velocities(std::vector<RigidContact>& contacts, const std::ve
                         const Vec3d v_rel = row.a.point_velocity(row.r_a) - row.b.point_velocity(row.r_b);
                         double t[2] = {c.tangent_impulse[0] - dot(v_rel, row.t1) / row.k_t1,
                                        c.tangent_impulse[1] - dot(v_rel, row.t2) / row.k_t2};
-                        const double size = std::hypot(t[0], t[1]);
+                        const double size = portable::hypot(t[0], t[1]);
                         const double limit = row.mu * c.normal_impulse;
                         if (size > limit) {
                             const double s = size > 0.0 ? limit / size : 0.0;

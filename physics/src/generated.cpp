@@ -8,6 +8,7 @@
 
 #include "physics/error.h"
 #include "physics/mesh.h"
+#include "physics/portable_math.h"
 #include "physics/shape_meshes.h"
 
 namespace softbody {
@@ -87,8 +88,8 @@ Mesh torus(int rings, int segments, std::string_view name) {
         const float u = turn * float(i) / float(rings);
         for (int j = 0; j < segments; ++j) {
             const float v = turn * float(j) / float(segments);
-            raw.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
-                                     minor * std::sin(v)});
+            raw.positions.push_back({(major + minor * portable::cos(v)) * portable::cos(u), (major + minor * portable::cos(v)) * portable::sin(u),
+                                     minor * portable::sin(v)});
         }
     }
     const auto at = [&](int i, int j) { return std::int32_t((i % rings) * segments + (j % segments)); };
