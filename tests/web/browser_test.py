@@ -20,6 +20,9 @@ Cases (all must pass):
               tile: the native portable tile's state hash.
   one_thread  the same on a page that is not cross-origin isolated: the page must pick the
               one-thread build, and reach the same hash.
+  drop_record a mesh file dropped onto the page (an HTML drop event carrying assets/meshes/cube.obj)
+              becomes the body (the summary's mesh and 8 particles), and the M key records:
+              the summary's recording, and a WebM file the browser downloads.
 
 --bless writes the pile's picture to the reference instead of comparing (only on purpose,
 after looking at it). Exit 0 when every case passes, 1 otherwise.
@@ -50,6 +53,7 @@ THRESHOLDS = ["--pixel-threshold", "16", "--max-fraction", "0.002", "--max-mean"
 PILE_ARGS = {"scene": "assets/scenes/pile.json", "frames": "120", "frame_time": "0.02"}
 MIXED_ARGS = {"command": "simulate", "scene": "pile:12+cloud:700", "ticks": "100"}
 COMPARED_FIELDS = ("ticks", "sim_time", "status", "state_hash", "com", "particles", "rigid_bodies")
+DROP_ARGS = {"scene": "assets/scenes/default.json", "frames": "90", "frame_time": "0.02", "size": "320x240"}
 
 
 class Failure(Exception):
@@ -101,6 +105,55 @@ def browser_run(browser, base, args):
     if not line.startswith("{"):
         raise Failure(f"{url}: {line}\n  " + "\n  ".join(page.console))
     return page, json.loads(line)
+
+
+def press(page, key):
+    code = ord(key.upper())
+    for kind in ("keyDown", "keyUp"):
+        page.call("Input.dispatchKeyEvent", {"type": kind, "key": key, "code": "Key" + key.upper(),
+                                             "windowsVirtualKeyCode": code, "nativeVirtualKeyCode": code})
+
+
+def drop_and_record(browser, base, downloads):
+    """Drops a mesh onto the running page and records a second of it with the M key."""
+    browser.call("Browser.setDownloadBehavior", {"behavior": "allow", "downloadPath": downloads})
+    page = browser.open(base + "index.html?" + urllib.parse.urlencode(DROP_ARGS))
+    deadline = time.monotonic() + 60
+    while not page.evaluate("typeof Module === 'object' && !!Module.calledRun"):
+        if time.monotonic() > deadline:
+            raise Failure("drop_record: the app did not start:\n  " + "\n  ".join(page.console))
+        browser.pump(0.2)
+    with open(os.path.join(ROOT, "assets", "meshes", "cube.obj")) as f:
+        cube = f.read()
+    # What a browser does when a file is dropped: dragover, then drop with the file in it.
+    page.evaluate("(() => { const data = new DataTransfer(); data.items.add(new File([%s], 'cube.obj'));"
+                  " const canvas = document.getElementById('canvas');"
+                  " for (const type of ['dragover', 'drop'])"
+                  "   canvas.dispatchEvent(new DragEvent(type, {dataTransfer: data, bubbles: true, cancelable: true}));"
+                  " })()" % json.dumps(cube))
+    press(page, "m")
+    time.sleep(1.0)
+    press(page, "m")
+    line = page.wait_for_console(lambda text: text.startswith("{"), timeout=300)
+    web = json.loads(line)
+    if not web.get("mesh", "").endswith("/cube.obj") or web.get("particles") != 8:
+        raise Failure(f"drop_record: the dropped cube did not become the body (mesh '{web.get('mesh')}', "
+                      f"{web.get('particles')} particles)")
+    recording = web.get("recording") or {}
+    if not recording.get("video") or recording.get("frames", 0) < 1:
+        raise Failure(f"drop_record: the M key recorded nothing: {json.dumps(recording)}")
+    deadline = time.monotonic() + 30
+    name = os.path.basename(recording["path"])
+    while not os.path.exists(os.path.join(downloads, name)):
+        if time.monotonic() > deadline:
+            raise Failure(f"drop_record: {name} was not downloaded: {os.listdir(downloads)}")
+        browser.pump(0.5)
+    with open(os.path.join(downloads, name), "rb") as f:
+        head = f.read(4)
+    if head != b"\x1a\x45\xdf\xa3":
+        raise Failure(f"drop_record: {name} is not a WebM file (starts {head!r})")
+    print(f"drop_record: ok, the dropped cube simulated ({web['particles']} particles), "
+          f"{recording['frames']} frames recorded and downloaded as {name}", flush=True)
 
 
 def compare_summaries(name, web, native_summary):
@@ -170,6 +223,13 @@ def main():
                     compare_summaries(name, web, expected)
                 except (Failure, BrowserError) as e:
                     failures.append(str(e))
+            try:
+                downloads = os.path.join(options.work, "downloads")
+                shutil.rmtree(downloads, ignore_errors=True)
+                os.makedirs(downloads)
+                drop_and_record(browser, isolated, downloads)
+            except (Failure, BrowserError) as e:
+                failures.append(str(e))
     except Failure as e:
         failures.append(str(e))
     finally:
