@@ -88,6 +88,9 @@
       show(m ? 'Loading softbody\u2026 ' + Math.round(100 * m[1] / Math.max(1, m[2])) + '%' : text, false);
     },
     onRuntimeInitialized: function () { show('', false); },
+    // main() has returned: for a command that prints, it has finished (`run` goes on in the
+    // page's animation frames). Scripts that drive the page (tests/web) wait for this.
+    postRun: [function () { window.Module.mainReturned = true; }],
     onAbort: function (what) { fail('softbody stopped: ' + what); },
   };
   window.addEventListener('error', function (event) { fail(String(event.message || event)); });
