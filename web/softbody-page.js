@@ -81,6 +81,8 @@
     printErr: function (text) {
       console.error(text);
       if (command !== 'run') output.textContent += text + '\n';
+      // The app's one-line errors end it (a note does not): say so on the page too.
+      else if (/^softbody: /.test(text) && !/^softbody: note: /.test(text)) show(text, true);
     },
     setStatus: function (text) {
       // "Downloading data... (done/total)" while the assets arrive; "" when running.

@@ -156,7 +156,7 @@ def drop_and_record(browser, base, downloads):
           f"{recording['frames']} frames recorded and downloaded as {name}", flush=True)
 
 
-def compare_summaries(name, web, native_summary):
+def compare_summaries(name, web, native_summary, since):
     if web.get("status") != "ok":
         raise Failure(f"{name}: the browser's run ended '{web.get('status')}': {web.get('error')}")
     different = [f for f in COMPARED_FIELDS if web.get(f) != native_summary.get(f)]
@@ -165,7 +165,8 @@ def compare_summaries(name, web, native_summary):
                  for f in different]
         raise Failure(f"{name}: the browser's summary differs from the native build's (SOFTBODY_KERNEL=portable):\n" +
                       "\n".join(lines) + "\n  (a C library function in the simulation's path? physics/portable_math.h)")
-    print(f"{name}: ok, state_hash {web['state_hash']} after {web['ticks']} ticks, as the native build's", flush=True)
+    print(f"{name}: ok, state_hash {web['state_hash']} after {web['ticks']} ticks, as the native build's "
+          f"({time.monotonic() - since:.0f} s)", flush=True)
 
 
 def main():
@@ -192,11 +193,12 @@ def main():
         servers.append(plain_server)
         with Chromium(*VIEW) as browser:
             # pile: the scripted run of the issue, its summary and its picture.
+            case_start = time.monotonic()
             try:
                 page, web = browser_run(browser, isolated, PILE_ARGS)
                 if not any("the threaded build" in line for line in page.console):
                     raise Failure("pile: the isolated page did not load the threaded build:\n  " + "\n  ".join(page.console))
-                compare_summaries("pile", web, native(options.softbody, PILE_ARGS))
+                compare_summaries("pile", web, native(options.softbody, PILE_ARGS), case_start)
                 shot = os.path.join(options.work, "web_pile.png")
                 page.screenshot(shot)
                 if options.bless:
@@ -216,11 +218,12 @@ def main():
             # threads and one_thread: the SIMD tile over several blocks, on each build.
             expected = native(options.softbody, MIXED_ARGS)
             for name, base, build in (("threads", isolated, "the threaded build"), ("one_thread", plain, "the one-thread build")):
+                case_start = time.monotonic()
                 try:
                     page, web = browser_run(browser, base, MIXED_ARGS)
                     if not any(build in line for line in page.console):
                         raise Failure(f"{name}: the page did not load {build}:\n  " + "\n  ".join(page.console))
-                    compare_summaries(name, web, expected)
+                    compare_summaries(name, web, expected, case_start)
                 except (Failure, BrowserError) as e:
                     failures.append(str(e))
             try:
