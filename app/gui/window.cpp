@@ -93,6 +93,9 @@ Window::Window(const WindowOptions& options) {
         throw std::runtime_error("cannot create an OpenGL 3.3 core window: " + g_glfw_error);
     }
     glfwMakeContextCurrent(window_);
+#if defined(__EMSCRIPTEN__)
+    browser::fit_canvas(window_);  // the page's layout gives the size, before anything is framed in it
+#endif
     glfwSwapInterval(options.vsync ? 1 : 0);
     if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress))) {
         glfwDestroyWindow(window_);
