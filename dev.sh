@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # The two commands of README.md, each complete on its own on a fresh Debian 12 machine:
 #   ./dev.sh demo   install what is missing, build the app (not the tests), open the interactive demo
-#   ./dev.sh test   install what is missing, build, run every test; then the unit, kernel and CLI
-#                   tests again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/),
-#                   and a fixed set of inputs to each fuzz target (clang, build-fuzz/)
+#   ./dev.sh test   install what is missing, build, run every test; then the browser version in
+#                   headless Chromium (build-web/), the unit, kernel and CLI tests again under
+#                   AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), and a fixed set
+#                   of inputs to each fuzz target (clang, build-fuzz/)
 #   ./dev.sh soak   install, build the app, run the demo for 20,000 scripted frames (virtual display)
-# Everything comes from Debian's packages; nothing is downloaded from anywhere else.
+#   ./dev.sh web    install what is missing, build the browser version (build-web/site/) and serve
+#                   it at http://127.0.0.1:8080/ until stopped (WEB_PORT for another port)
+# Everything comes from Debian's packages (the browser version's few C++ sources from Debian's
+# source packages, by apt); nothing is downloaded from anywhere else.
 # ffmpeg is for videos: the app's Record button and `softbody render --video` run it (found at run
 # time; without it they write PNG frames), and the video tests read the clips back with ffprobe.
 set -euo pipefail
@@ -20,7 +24,12 @@ PACKAGES=(
 )
 # Only `test` needs these: clang and its runtimes for the fuzz targets (libFuzzer).
 TEST_PACKAGES=(clang libclang-rt-14-dev)
+# The browser version (`web`, and `test`, which tests it in a browser): emscripten compiles it,
+# chromium runs the tests. The sources of Dear ImGui, Qhull and meshoptimizer, which Debian
+# ships built for this machine only, come from their Debian source packages (web/fetch_sources.py).
+WEB_PACKAGES=(emscripten chromium)
 BUILD_DIR=${BUILD_DIR:-build}
+WEB_DIR=${WEB_DIR:-build-web}
 JOBS=$(nproc 2>/dev/null || echo 2)
 
 install_missing() {
@@ -41,6 +50,35 @@ install_missing() {
 build() {
   cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
   cmake --build "$BUILD_DIR" -j"$JOBS" ${1:+--target "$1"}
+}
+
+# The browser version, into $WEB_DIR/site: two builds of web/ (CMake, emscripten), with
+# WebAssembly threads and without (web/CMakeLists.txt says why both), and the page.
+build_web() {
+  local start=$SECONDS variant threads
+  python3 web/fetch_sources.py "$WEB_DIR/sources"
+  # emscripten's JavaScript optimiser needs Debian's acorn module, which a node installed from
+  # elsewhere (first on PATH) does not look for.
+  export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
+  for variant in single threads; do
+    threads=OFF
+    if [ "$variant" = threads ]; then threads=ON; fi
+    emcmake cmake -S web -B "$WEB_DIR/$variant" -DCMAKE_BUILD_TYPE=Release -DSOFTBODY_WEB_THREADS="$threads" \
+      -DSOFTBODY_WEB_SOURCES="$PWD/$WEB_DIR/sources" -DSOFTBODY_WEB_SITE="$PWD/$WEB_DIR/site" >/dev/null
+    cmake --build "$WEB_DIR/$variant" -j"$JOBS"
+  done
+  echo "dev.sh: browser build took $(( SECONDS - start )) s ($WEB_DIR/site)"
+}
+
+# The browser version in headless Chromium (tests/web/browser_test.py): the scripted pile run's
+# summary against the native build's, its picture against a reference, and the threaded and
+# one-thread builds on a soft body. Needs the native build (its softbody and image comparison).
+web_tests() {
+  local start=$SECONDS
+  build_web
+  python3 tests/web/browser_test.py --site "$WEB_DIR/site" --softbody "$BUILD_DIR/app/softbody" \
+    --compare "$BUILD_DIR/tests/render/softbody_image_compare" --work "$WEB_DIR/tests"
+  echo "dev.sh: browser build and tests took $(( SECONDS - start )) s"
 }
 
 # The unit, kernel, CLI and fuzz-regression tests again under AddressSanitizer and
@@ -102,9 +140,10 @@ case "${1:-}" in
     exec "$BUILD_DIR/app/softbody" "$@"
     ;;
   test)
-    install_missing "${TEST_PACKAGES[@]}"
+    install_missing "${TEST_PACKAGES[@]}" "${WEB_PACKAGES[@]}"
     build
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$JOBS"
+    web_tests
     sanitizer_tests
     fuzz_smoke
     ;;
@@ -120,10 +159,17 @@ case "${1:-}" in
     "${runner[@]}" "$BUILD_DIR/app/softbody" run --size 800x600 --frames "$frames" --script tests/soak/soak.script
     echo "dev.sh: soak of $frames frames took $(( $(date +%s) - start )) s"
     ;;
+  web)
+    install_missing "${WEB_PACKAGES[@]}"
+    build_web
+    echo "dev.sh: open http://127.0.0.1:${WEB_PORT:-8080}/ (Ctrl+C stops the server; $WEB_DIR/site can go on any static host)"
+    exec python3 web/serve.py --port "${WEB_PORT:-8080}" "$WEB_DIR/site"
+    ;;
   *)
     echo "usage: ./dev.sh demo   (install, build, open the demo)" >&2
     echo "       ./dev.sh test   (install, build, run every test, then under the sanitizers, then the fuzzers)" >&2
     echo "       ./dev.sh soak   (install, build, 20,000 scripted frames of the demo)" >&2
+    echo "       ./dev.sh web    (install, build the browser version, serve it at http://127.0.0.1:8080/)" >&2
     exit 2
     ;;
 esac

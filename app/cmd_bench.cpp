@@ -168,8 +168,19 @@ struct Measurement {
 
 // Runs `measure` in a child process and returns what it measured, with the child's peak RSS.
 // T is plain data with `measured`, `note` and `peak_kb` (Measurement, ScaleRun).
+// A browser page cannot fork: there it measures in the page's process, and the peak is not known.
 template <class T>
 T in_child(const std::function<T()>& measure) {
+#if defined(__EMSCRIPTEN__)
+    T m;
+    try {
+        m = measure();
+    } catch (const std::exception& e) {
+        m.measured = 0;
+        std::snprintf(m.note, sizeof m.note, "%s", e.what());
+    }
+    return m;
+#else
     int fd[2];
     if (pipe(fd) != 0) throw std::runtime_error("bench: pipe failed");
     std::cout.flush();
@@ -217,6 +228,7 @@ T in_child(const std::function<T()>& measure) {
                       WIFSIGNALED(status) ? strsignal(WTERMSIG(status)) : "no result");
     }
     return m;
+#endif
 }
 
 // Times tick() one call at a time until `budget` seconds have passed (at least min_ticks,
@@ -420,6 +432,7 @@ const char* width_of(PairKernelVariant variant) {
     switch (variant) {
         case PairKernelVariant::Avx512: return "512-bit";
         case PairKernelVariant::Avx2: return "256-bit";
+        case PairKernelVariant::WasmSimd128: return "128-bit";
         default: return "scalar";
     }
 }
@@ -919,7 +932,7 @@ int bench_command(int argc, char** argv) {
     // --- The pair kernel alone, every tile variant this CPU runs, against this CPU's peak ---------
     const std::vector<PairKernelVariant> variants = [] {
         std::vector<PairKernelVariant> here;
-        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
             if (PairForceKernel::supported(v)) here.push_back(v);
         }
         return here;

@@ -117,9 +117,14 @@ void recorder_controls(Recorder& recorder, bool paused, float ui_scale) {
     if (ImGui::Button(on ? "Stop" : "Record", ImVec2(100 * ui_scale, 0))) recorder.toggle();
     if (on) ImGui::PopStyleColor();
     if (ImGui::IsItemHovered()) {
+#if defined(__EMSCRIPTEN__)  // the browser's recorder (app/web/video_browser.cpp)
+        ImGui::SetTooltip("M: the 3D view into softbody-<date>-<time>.webm, downloaded when you stop, %.0f frames\n"
+                          "per simulated second. While paused nothing is recorded.", Recorder::kFps);
+#else
         ImGui::SetTooltip("M: the 3D view into softbody-<date>-<time>.mp4 in the current folder, %.0f frames per\n"
                           "simulated second, so the clip plays at true speed (needs ffmpeg: sudo apt install ffmpeg).\n"
                           "While paused nothing is recorded.", Recorder::kFps);
+#endif
     }
     if (on) {
         ImGui::SameLine();

@@ -10,6 +10,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#if defined(__EMSCRIPTEN__)
+#include "web/browser.h"
+#endif
+
 namespace softbody::app {
 
 namespace {
@@ -79,7 +83,9 @@ Window::Window(const WindowOptions& options) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+#if !defined(__EMSCRIPTEN__)  // the browser's GLFW (3.2) has no content scale: the page is in CSS pixels
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+#endif
     glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
     window_ = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
     if (!window_) {
@@ -87,6 +93,9 @@ Window::Window(const WindowOptions& options) {
         throw std::runtime_error("cannot create an OpenGL 3.3 core window: " + g_glfw_error);
     }
     glfwMakeContextCurrent(window_);
+#if defined(__EMSCRIPTEN__)
+    browser::fit_canvas(window_);  // the page's layout gives the size, before anything is framed in it
+#endif
     glfwSwapInterval(options.vsync ? 1 : 0);
     if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress))) {
         glfwDestroyWindow(window_);
@@ -100,9 +109,11 @@ Window::Window(const WindowOptions& options) {
     glfwSetScrollCallback(window_, WindowCallbacks::scroll);
     glfwSetKeyCallback(window_, WindowCallbacks::key);
 
+#if !defined(__EMSCRIPTEN__)
     float sx = 1.0f, sy = 1.0f;
     glfwGetWindowContentScale(window_, &sx, &sy);
     content_scale_ = sx > 0.5f ? sx : 1.0f;
+#endif
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -120,7 +131,11 @@ Window::Window(const WindowOptions& options) {
     font.SizePixels = 14.0f * content_scale_;
     io.Fonts->AddFontDefault(&font);
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
+#if defined(__EMSCRIPTEN__)
+    ImGui_ImplOpenGL3_Init("#version 300 es");  // WebGL2
+#else
     ImGui_ImplOpenGL3_Init("#version 330 core");
+#endif
 }
 
 Window::~Window() {
@@ -133,7 +148,12 @@ Window::~Window() {
 
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }
 void Window::request_close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
-void Window::poll_events() { glfwPollEvents(); }
+void Window::poll_events() {
+#if defined(__EMSCRIPTEN__)
+    browser::fit_canvas(window_);  // the page's events arrive by themselves; its layout may have changed
+#endif
+    glfwPollEvents();
+}
 void Window::swap_buffers() { glfwSwapBuffers(window_); }
 double Window::time() const { return glfwGetTime(); }
 

@@ -8,6 +8,8 @@
 #include <numeric>
 #include <tuple>
 
+#include "physics/portable_math.h"
+
 namespace softbody {
 
 namespace {

@@ -10,6 +10,7 @@
 
 #include "physics/error.h"
 #include "physics/mesh.h"
+#include "physics/portable_math.h"
 #include "physics/shape_meshes.h"
 
 namespace softbody {
@@ -89,8 +90,8 @@ Mesh torus(int rings, int segments, std::string_view name) {
         const float u = turn * float(i) / float(rings);
         for (int j = 0; j < segments; ++j) {
             const float v = turn * float(j) / float(segments);
-            raw.positions.push_back({(major + minor * std::cos(v)) * std::cos(u), (major + minor * std::cos(v)) * std::sin(u),
-                                     minor * std::sin(v)});
+            raw.positions.push_back({(major + minor * portable::cos(v)) * portable::cos(u), (major + minor * portable::cos(v)) * portable::sin(u),
+                                     minor * portable::sin(v)});
         }
     }
     const auto at = [&](int i, int j) { return std::int32_t((i % rings) * segments + (j % segments)); };
@@ -256,7 +257,20 @@ void random_scene(std::uint64_t seed, Scene& scene) {
     std::mt19937_64 rng(0x5eedULL * 1000003ULL + seed);
     const auto unit = [&] { return double(rng() >> 11) * 0x1.0p-53; };  // [0, 1)
     const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(); };
-    const auto log_between = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit()); };
+    // lo (hi / lo)^u, the power by square roots of square roots for u's first 30 bits (no pow:
+    // the same bits everywhere, portable_math.h).
+    const auto log_between = [&](double lo, double hi) {
+        double u = unit(), root = hi / lo, value = lo;
+        for (int bit = 0; bit < 30; ++bit) {
+            root = std::sqrt(root);
+            u *= 2.0;
+            if (u >= 1.0) {
+                value *= root;
+                u -= 1.0;
+            }
+        }
+        return value;
+    };
     const auto direction = [&] {
         for (;;) {
             const Vec3d d{between(-1, 1), between(-1, 1), between(-1, 1)};
@@ -288,7 +302,7 @@ void random_scene(std::uint64_t seed, Scene& scene) {
                 def.shape = ShapeKind::Cylinder;
                 def.radius = 0.5 * log_between(0.05, 5.0);
                 def.height = log_between(0.05, 5.0);
-                radius = std::hypot(*def.radius, 0.5 * *def.height);
+                radius = portable::hypot(*def.radius, 0.5 * *def.height);
                 break;
         }
         def.density = log_between(100.0, 20000.0);

@@ -227,13 +227,14 @@ Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double 
     }
     const Vec3d target{pi.x / (1.0 + m1 + m2 * inv_I[0]), pi.y / (1.0 + m1 + m2 * inv_I[1]), pi.z / (1.0 + m1 + m2 * inv_I[2])};
     // R'^T L = pi' for R' = R B with B pi' = pi: B turns pi' onto pi, about pi' x pi (body axes).
+    // The least turn that does it, as a quaternion without an angle (no sine or arctangent: the
+    // same bits everywhere, portable_math.h): (|a||b| + a . b, a x b), normalised, turns a onto b.
     const Vec3d axis = cross(target, pi);
-    const double s = length(axis), c = dot(target, pi);
-    if (!(s > 0.0)) return q0;
-    const double angle = std::atan2(s, c);
-    const Vec3d axis_world = q0.normalized().to_matrix() * (body.principal_axes * (axis / s));
+    if (!(length(axis) > 0.0)) return q0;
+    const double w = length(target) * length(pi) + dot(target, pi);
     // Turning the body by B (in its own axes) is turning it by R B R^T in the world's.
-    return Quat::from_axis_angle(axis_world, angle) * q0;
+    const Vec3d axis_world = q0.normalized().to_matrix() * (body.principal_axes * axis);
+    return Quat{w, axis_world.x, axis_world.y, axis_world.z}.normalized() * q0;
 }
 
 void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage) {

@@ -48,6 +48,7 @@
 #include <utility>
 
 #include "physics/error.h"
+#include "physics/portable_math.h"
 
 namespace softbody {
 
@@ -467,7 +468,7 @@ ReducedMesh reduce_mesh(const Mesh& full, std::size_t max_particles) {
     for (Index i : kept) kept_at.push_back(at[i]);
     // Cells about one particle spacing wide: a surface's mean edge, else the spacing of the
     // kept particles spread through the bounding box.
-    const double spacing_cloud = diagonal > 0.0 ? diagonal / std::cbrt(double(kept.size())) : 1.0;
+    const double spacing_cloud = diagonal > 0.0 ? diagonal / portable::cbrt(double(kept.size())) : 1.0;
     const double spacing_surface = corner_particles.empty() ? spacing_cloud : edge_sum / (3.0 * double(corner_particles.size()));
     const NearestTriangle nearest_triangle(corners, spacing_surface, lo, hi);
     const NearestParticles nearest_particles(kept_at, spacing_cloud, lo, hi);

@@ -4,11 +4,16 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
 #include "pair_tiles.h"
+#include "physics/error.h"
 
 namespace softbody {
 
@@ -73,6 +78,8 @@ double elastic_energy_reference(const PairInput& in) {
 // Accuracy: the SIMD tiles take 1/l from the CPU's approximate reciprocal square root refined
 // by one Newton step (relative error about 4e-7 with AVX2, float rounding with AVX-512), and
 // fuse multiply-adds; the results match the reference to float rounding, not bit for bit.
+// The browser's WebAssembly tile (four rows i against one j) keeps the portable tile's
+// operations and the order of its sums, so it gives the portable tile's bits (pair_tile_wasm.cpp).
 // ---------------------------------------------------------------------------------------------
 namespace detail {
 
@@ -149,6 +156,9 @@ static_assert(PairForceKernel::kBlock <= T && PairForceKernel::kLargeBlock <= T)
 
 detail::TileFunction tile_function(PairKernelVariant variant) {
     switch (variant) {
+#if defined(SOFTBODY_HAVE_WASM_TILE)
+        case PairKernelVariant::WasmSimd128: return detail::tile_wasm;
+#endif
 #if defined(SOFTBODY_HAVE_AVX512_TILE)
         case PairKernelVariant::Avx512: return detail::tile_avx512;
 #endif
@@ -161,6 +171,9 @@ detail::TileFunction tile_function(PairKernelVariant variant) {
 
 detail::StretchTileFunction stretch_tile_function(PairKernelVariant variant) {
     switch (variant) {
+#if defined(SOFTBODY_HAVE_WASM_TILE)
+        case PairKernelVariant::WasmSimd128: return detail::stretch_tile_wasm;
+#endif
 #if defined(SOFTBODY_HAVE_AVX512_TILE)
         case PairKernelVariant::Avx512: return detail::stretch_tile_avx512;
 #endif
@@ -206,11 +219,41 @@ bool PairForceKernel::supported(PairKernelVariant variant) {
 #else
             return false;
 #endif
+        case PairKernelVariant::WasmSimd128:
+#if defined(SOFTBODY_HAVE_WASM_TILE)
+            return true;  // a browser without SIMD does not load the module at all
+#else
+            return false;
+#endif
     }
     return false;
 }
 
+namespace {
+
+// SOFTBODY_KERNEL, when set: the tile to run instead of the widest (see pair_forces.h).
+std::optional<PairKernelVariant> forced_variant() {
+    const char* text = std::getenv("SOFTBODY_KERNEL");
+    if (text == nullptr || *text == '\0') return std::nullopt;
+    const std::string_view name = text;
+    PairKernelVariant variant;
+    if (name == "auto") return std::nullopt;
+    if (name == "portable" || name == "scalar") variant = PairKernelVariant::Scalar;
+    else if (name == "avx2") variant = PairKernelVariant::Avx2;
+    else if (name == "avx512") variant = PairKernelVariant::Avx512;
+    else if (name == "simd128") variant = PairKernelVariant::WasmSimd128;
+    else throw InputError("SOFTBODY_KERNEL: '" + std::string(name) + "' is not a tile (portable, avx2, avx512, simd128 or auto)");
+    if (!PairForceKernel::supported(variant)) {
+        throw InputError("SOFTBODY_KERNEL=" + std::string(name) + ": this build cannot run that tile on this machine");
+    }
+    return variant;
+}
+
+}  // namespace
+
 PairKernelVariant PairForceKernel::best_variant() {
+    if (const auto forced = forced_variant()) return *forced;
+    if (supported(PairKernelVariant::WasmSimd128)) return PairKernelVariant::WasmSimd128;
     if (supported(PairKernelVariant::Avx512)) return PairKernelVariant::Avx512;
     if (supported(PairKernelVariant::Avx2)) return PairKernelVariant::Avx2;
     return PairKernelVariant::Scalar;
@@ -222,6 +265,7 @@ const char* PairForceKernel::name(PairKernelVariant variant) {
         case PairKernelVariant::Scalar: return "scalar";
         case PairKernelVariant::Avx2: return "avx2";
         case PairKernelVariant::Avx512: return "avx512";
+        case PairKernelVariant::WasmSimd128: return "simd128";
     }
     return "?";
 }
@@ -240,8 +284,10 @@ PairForceKernel::PairForceKernel(ThreadPool& pool, PairKernelVariant variant)
 //                                                                                  total 48
 // The portable tile has no fused multiply-add (the build forbids fusing), and takes 2/l
 // as a square root and a division: the same 48, less the max and the Newton step's 4, is 44.
+// The WebAssembly tile does the portable tile's operations: 44.
 int PairForceKernel::flops_per_pair(PairKernelVariant variant) {
-    return (variant == PairKernelVariant::Auto ? best_variant() : variant) == PairKernelVariant::Scalar ? 44 : 48;
+    const PairKernelVariant v = variant == PairKernelVariant::Auto ? best_variant() : variant;
+    return v == PairKernelVariant::Scalar || v == PairKernelVariant::WasmSimd128 ? 44 : 48;
 }
 
 double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, double seconds) {
@@ -253,6 +299,9 @@ double PairForceKernel::peak_flops(PairKernelVariant variant, int threads, doubl
 #endif
 #if defined(SOFTBODY_HAVE_AVX2_TILE)
     if (variant == PairKernelVariant::Avx2) probe = detail::probe_avx2, lanes = 8.0;
+#endif
+#if defined(SOFTBODY_HAVE_WASM_TILE)
+    if (variant == PairKernelVariant::WasmSimd128) probe = detail::probe_wasm, lanes = 2.0;  // half the chains, 4 wide
 #endif
     // Rounds of short bursts, one per thread, each round timed from its start until every
     // thread has finished its burst, as a call of the kernel is: a thread that the operating

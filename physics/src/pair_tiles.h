@@ -1,6 +1,7 @@
 // Internal to the pair kernel: what one tile of pairs reads and writes, shared by the portable
-// tile (pair_forces.cpp) and the SIMD tiles (pair_tile_avx2.cpp, pair_tile_avx512.cpp), which
-// are compiled with their own instruction-set flags.
+// tile (pair_forces.cpp) and the SIMD tiles (pair_tile_avx2.cpp, pair_tile_avx512.cpp, and
+// pair_tile_wasm.cpp in the browser build), which are compiled with their own instruction-set
+// flags.
 //
 // Keep this header free of inline functions and templates from the standard library: a
 // function compiled once with AVX flags and once without may be merged by the linker, and the
@@ -62,6 +63,14 @@ float probe_avx2(std::size_t rounds, float seed);
 void tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                bool diagonal, float* out_i, float* out_j);
 double stretch_tile_avx2(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
+                         bool diagonal);
+#endif
+#if defined(SOFTBODY_HAVE_WASM_TILE)
+// WebAssembly SIMD: the portable tile's results bit for bit, four rows at a time.
+float probe_wasm(std::size_t rounds, float seed);
+void tile_wasm(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
+               bool diagonal, float* out_i, float* out_j);
+double stretch_tile_wasm(const PackedParticles& p, std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
                          bool diagonal);
 #endif
 #if defined(SOFTBODY_HAVE_AVX512_TILE)

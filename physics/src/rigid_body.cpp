@@ -10,6 +10,7 @@
 #include "physics/error.h"
 #include "physics/generated.h"
 #include "physics/mass_properties.h"
+#include "physics/portable_math.h"
 #include "physics/shape_meshes.h"
 
 namespace softbody {
@@ -109,7 +110,7 @@ ConvexHull cylinder_hull(double radius, double height) {
     std::vector<Vec3d> rim;
     for (int k = 0; k < kCylinderHullSides; ++k) {
         const double angle = 2.0 * 3.14159265358979323846 * k / kCylinderHullSides;
-        for (double z : {-0.5 * height, 0.5 * height}) rim.push_back({radius * std::cos(angle), radius * std::sin(angle), z});
+        for (double z : {-0.5 * height, 0.5 * height}) rim.push_back({radius * portable::cos(angle), radius * portable::sin(angle), z});
     }
     return convex_hull(rim);
 }
@@ -196,7 +197,7 @@ Geometry shape_geometry(const RigidBodyDef& def) {
             g.unit = cylinder_mass_properties(*def.radius, *def.height);
             g.hull = std::make_shared<const ConvexHull>(cylinder_hull(*def.radius, *def.height));
             g.render_mesh = cylinder_mesh(*def.radius, *def.height);
-            g.bounding_radius = std::hypot(*def.radius, 0.5 * *def.height);
+            g.bounding_radius = portable::hypot(*def.radius, 0.5 * *def.height);
             break;
         case ShapeKind::Mesh: return mesh_geometry(def);
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "physics/error.h"
+#include "physics/portable_math.h"
 
 namespace softbody {
 
@@ -153,7 +154,7 @@ Mesh cylinder_mesh(double radius, double height, int segments) {
     for (const double z : {-half, half}) {
         for (int k = 0; k < segments; ++k) {
             const double angle = 2.0 * kPi * k / segments;
-            b.vertex({radius * std::cos(angle), radius * std::sin(angle), z});
+            b.vertex({radius * portable::cos(angle), radius * portable::sin(angle), z});
         }
     }
     const std::int32_t bottom_center = b.vertex({0.0, 0.0, -half});

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics/portable_math.h"
+
 namespace softbody {
 
 namespace {
@@ -80,9 +82,9 @@ void build_particles(SoftBody& body) {
     const bool centred = p.scale == 0.0f, turned = p.up_axis != "z";
     // Turn the mesh about x, then y, then z, after its up axis is turned to +z.
     const float to_rad = 3.14159265358979f / 180.0f;
-    const float cx = std::cos(p.rotation.x * to_rad), sx = std::sin(p.rotation.x * to_rad);
-    const float cy = std::cos(p.rotation.y * to_rad), sy = std::sin(p.rotation.y * to_rad);
-    const float cz = std::cos(p.rotation.z * to_rad), sz = std::sin(p.rotation.z * to_rad);
+    const float cx = portable::cos(p.rotation.x * to_rad), sx = portable::sin(p.rotation.x * to_rad);
+    const float cy = portable::cos(p.rotation.y * to_rad), sy = portable::sin(p.rotation.y * to_rad);
+    const float cz = portable::cos(p.rotation.z * to_rad), sz = portable::sin(p.rotation.z * to_rad);
     auto rotate = [&](Vec3 v) {
         if (centred) v = v - body.file_centre;
         if (turned) v = turn_up(p.up_axis, v);

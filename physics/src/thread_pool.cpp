@@ -29,8 +29,19 @@ bool spin_until(Ready ready) {
 }  // namespace
 
 int hardware_threads() {
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+    return 1;  // the browser build without threads (for a page that is not cross-origin isolated)
+#else
     const unsigned n = std::thread::hardware_concurrency();
+#if defined(__EMSCRIPTEN__)
+    // In the browser every thread is a worker the page starts before the app does (a thread
+    // cannot start while the page waits for it): at most kBrowserThreads a world, so that the
+    // page's pool (web/CMakeLists.txt) serves the compared worlds too.
+    constexpr unsigned kBrowserThreads = 4;
+    if (n > kBrowserThreads) return static_cast<int>(kBrowserThreads);
+#endif
     return n == 0 ? 1 : static_cast<int>(n);
+#endif
 }
 
 ThreadPool::ThreadPool(int threads) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "physics/collide.h"
+#include "physics/portable_math.h"
 
 namespace softbody {
 
@@ -26,8 +27,8 @@ namespace {
 // small; 4 against pi for a half turn).
 double turn_rate_bound(const Quat& q0, const Quat& q1) {
     const double c = std::min(1.0, std::abs(dot(q0.normalized(), q1.normalized())));
-    const double alpha = std::acos(c);
-    return 4.0 * std::tan(0.5 * alpha);
+    const double alpha = portable::acos(c);
+    return 4.0 * portable::tan(0.5 * alpha);
 }
 
 }  // namespace

@@ -50,8 +50,21 @@ std::string legend(const std::vector<std::string>& files) {
     return text + ")\n";
 }
 
-unsigned compile(GLenum stage, const std::string& name, const std::string& text, const std::string& sources) {
+// The shaders are written in GLSL 3.30 core. An OpenGL ES 3.0 context (WebGL2, in the browser
+// build) takes them as GLSL 3.00 es, which has what they use, once their version line says so
+// and the default precisions are given (ES has none for floats in a fragment shader); the
+// `#line` after them keeps the driver's line numbers those of the file.
+std::string for_this_context(const std::string& text) {
+    constexpr std::string_view kCore = "#version 330 core\n";
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    if (!text.starts_with(kCore) || version == nullptr || !std::string_view(version).starts_with("OpenGL ES")) return text;
+    return "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n#line 2 0\n" +
+           text.substr(kCore.size());
+}
+
+unsigned compile(GLenum stage, const std::string& name, const std::string& original, const std::string& sources) {
     const unsigned shader = glCreateShader(stage);
+    const std::string text = for_this_context(original);
     const char* source = text.c_str();
     glShaderSource(shader, 1, &source, nullptr);
     glCompileShader(shader);

@@ -92,7 +92,7 @@ inline double worst_relative_difference(const std::vector<double>& scale, const 
 
 inline std::vector<PairKernelVariant> variants_here() {
     std::vector<PairKernelVariant> out;
-    for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+    for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
         if (PairForceKernel::supported(v)) out.push_back(v);
     }
     return out;

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "kernel_support.h"
+#include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
 #include "physics/thread_pool.h"
@@ -172,10 +174,36 @@ TEST(PairKernel, VariantsReportWhatTheyRun) {
     EXPECT_STREQ(PairForceKernel(pool).variant(), PairForceKernel::name(PairForceKernel::best_variant()));
     EXPECT_STREQ(PairForceKernel(pool, PairKernelVariant::Scalar).variant(), "scalar");
     // Asking for a variant the CPU lacks gives the best one it has, never a crash.
-    for (auto v : {PairKernelVariant::Avx2, PairKernelVariant::Avx512}) {
+    for (auto v : {PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
         PairForceKernel kernel(pool, v);
         EXPECT_TRUE(PairForceKernel::supported(kernel.variant_id()));
     }
+}
+
+// SOFTBODY_KERNEL names the tile instead of the widest (pair_forces.h): portable is how a native
+// build does the browser build's float operations. A name that is no tile, or a tile this
+// build cannot run (the browser's, here), is one line naming the variable.
+TEST(PairKernel, EnvironmentNamesTheTile) {
+    struct Unset {
+        ~Unset() { ::unsetenv("SOFTBODY_KERNEL"); }
+    } unset;
+    ThreadPool pool(1);
+    ::setenv("SOFTBODY_KERNEL", "portable", 1);
+    EXPECT_STREQ(PairForceKernel(pool).variant(), "scalar");
+    EXPECT_EQ(PairForceKernel::best_variant(), PairKernelVariant::Scalar);
+    ::setenv("SOFTBODY_KERNEL", "simd128", 1);
+    EXPECT_THROW(PairForceKernel{pool}, InputError);
+    ::setenv("SOFTBODY_KERNEL", "fastest", 1);
+    try {
+        PairForceKernel kernel(pool);
+        ADD_FAILURE() << "accepted SOFTBODY_KERNEL=fastest";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "SOFTBODY_KERNEL: 'fastest' is not a tile (portable, avx2, avx512, simd128 or auto)");
+    }
+    ::setenv("SOFTBODY_KERNEL", "auto", 1);
+    EXPECT_STREQ(PairForceKernel(pool).variant(), PairForceKernel::name(PairForceKernel::best_variant()));
+    ::unsetenv("SOFTBODY_KERNEL");
+    EXPECT_NE(PairForceKernel::best_variant(), PairKernelVariant::WasmSimd128);  // not in a native build
 }
 
 // The whole World with the fast kernel follows the reference kernel: a torus falling freely

@@ -2,7 +2,8 @@
 // heart of Listing 8. Two implementations compute the same sums:
 //   pair_forces_reference  the readable version, one pair at a time (read this first);
 //   PairForceKernel        the fast one: blocks of pairs, SIMD (AVX2/AVX-512 when the CPU has
-//                          them, a portable loop otherwise), spread over threads, with
+//                          them, WebAssembly SIMD in the browser, a portable loop
+//                          otherwise), spread over threads, with
 //                          results that do not depend on the number of threads.
 #pragma once
 
@@ -39,8 +40,13 @@ double elastic_energy_reference(const PairInput& in);
 
 // Which tile code the fast kernel runs. Auto picks the widest this CPU supports (checked at
 // run time, so one binary runs everywhere); Scalar is the portable loop, for tests and bench.
-// Results are bit-identical for one variant on one machine; variants agree to float rounding.
-enum class PairKernelVariant { Auto, Scalar, Avx2, Avx512 };
+// Results are bit-identical for one variant on one machine; variants agree to float rounding,
+// except WasmSimd128 (the browser build's), which gives Scalar's bits.
+//
+// The environment variable SOFTBODY_KERNEL names the tile Auto picks instead: portable (or
+// scalar), avx2, avx512 or simd128. SOFTBODY_KERNEL=portable makes a native build do the float
+// operations of the browser build in the same order: the same state hash.
+enum class PairKernelVariant { Auto, Scalar, Avx2, Avx512, WasmSimd128 };
 
 class PairForceKernel {
 public:
@@ -63,11 +69,13 @@ public:
     void compute(const PairInput& in, Vec3Array& f);
     double elastic_energy(const PairInput& in);
 
-    // Name of the tile code in use: "avx512", "avx2" or "scalar".
+    // Name of the tile code in use: "avx512", "avx2", "simd128" or "scalar".
     const char* variant() const { return name(variant_); }
     PairKernelVariant variant_id() const { return variant_; }
 
-    // What this binary can run here (built in, and reported by the CPU), and the widest of it.
+    // What this binary can run here (built in, and reported by the CPU), and the widest of it,
+    // or what SOFTBODY_KERNEL names (InputError, one line, for a name that is not a tile or a
+    // tile this binary cannot run here).
     static bool supported(PairKernelVariant variant);
     static PairKernelVariant best_variant();
     static const char* name(PairKernelVariant variant);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "physics/mat3.h"
+#include "physics/portable_math.h"
 #include "physics/vec3.h"
 
 namespace softbody {
@@ -18,8 +19,8 @@ struct Quat {
     static constexpr Quat pure(const Vec3d& v) { return {0.0, v.x, v.y, v.z}; }
     // A turn of `angle` radians about the unit vector `axis`.
     static Quat from_axis_angle(const Vec3d& axis, double angle) {
-        const double s = std::sin(0.5 * angle);
-        return {std::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
+        const double s = portable::sin(0.5 * angle);
+        return {portable::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
     }
     // Turns about x, then y, then z, by the given degrees (the soft body's `rotation` key).
     static Quat from_degrees_xyz(const Vec3d& degrees) {
