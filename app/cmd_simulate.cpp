@@ -5,8 +5,10 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <iostream>
 #include <memory>
+#include <numeric>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -112,8 +114,17 @@ int simulate_command(int argc, char** argv) {
     if (!dump_bodies_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_bodies_path, Dump::Kind::RigidBodies));
     for (auto& dump : dumps) dump->write(world);
     const auto start = std::chrono::steady_clock::now();
+    // What the rigid contacts did to the energy (World::contact_energy), over the run and over
+    // its last second.
+    ContactEnergy contact_work;
+    std::deque<double> last_second;
+    const std::size_t ticks_a_second = std::max<std::size_t>(1, std::size_t(std::llround(1.0 / double(params.dt))));
     for (std::int64_t t = 0; t < ticks && world.status() == Status::Ok; ++t) {
         world.tick();
+        contact_work.total += world.contact_energy().total;
+        contact_work.restitution += world.contact_energy().restitution;
+        last_second.push_back(world.contact_energy().total);
+        if (last_second.size() > ticks_a_second) last_second.pop_front();
         if (world.status() == Status::Ok && world.ticks() % static_cast<std::uint64_t>(dump_every) == 0) {
             for (auto& dump : dumps) dump->write(world);
         }
@@ -146,6 +157,10 @@ int simulate_command(int argc, char** argv) {
         {"substeps", s.substeps},
         {"energy",
          {{"kinetic", e.kinetic}, {"rotational", e.rotational}, {"gravity", e.gravity}, {"elastic", e.elastic}, {"total", e.total()}}},
+        {"contacts_energy",
+         {{"total", contact_work.total},
+          {"restitution", contact_work.restitution},
+          {"last_second", std::accumulate(last_second.begin(), last_second.end(), 0.0)}}},
         {"com", {com.x, com.y, com.z}},
         {"min_z", world.min_z()},
         {"stability", s.h_omega},

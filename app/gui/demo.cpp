@@ -101,6 +101,7 @@ void Demo::after_load(const Scene& scene) {
     built_rigid_bodies_ = scene.rigid_bodies;
     clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
     energy_.clear();
+    contact_work_.clear();
     last_collision_.reset();
     compared_.clear();  // a new scene: one world again
     stop_inspecting();
@@ -164,6 +165,7 @@ void Demo::reset() {
         scene_.params = world_->params();
         clock_.reset();
         energy_.clear();
+    contact_work_.clear();
         last_collision_.reset();
         sample_energy();
         history_.start(*world_);
@@ -229,6 +231,7 @@ bool Demo::build_compared() {
         return false;
     }
     energy_.clear();
+    contact_work_.clear();
     sample_energy();
     frame_body();
     return true;
@@ -363,6 +366,9 @@ void Demo::tick_once() {
     world_->tick();
     history_.after_tick(*world_);
     if (on_tick) on_tick(*world_);
+    // What the contacts did, kept for a second: the energy panel's "contacts" line.
+    contact_work_.emplace_back(world_->time(), world_->contact_energy().total);
+    while (!contact_work_.empty() && contact_work_.front().first <= world_->time() - 1.0 + 1e-9) contact_work_.pop_front();
     // The compared worlds in lockstep (each replaying its own record when in the past).
     for (ComparedWorld& c : compared_) {
         if (c.world->status() != Status::Ok) continue;
@@ -385,6 +391,7 @@ void Demo::go_to_tick(std::uint64_t tick) {
     for (ComparedWorld& c : compared_) c.history.go_to(*c.world, tick);
     // The energy plot and the last collision come back with the world; the plot is cut at now.
     while (!energy_.empty() && energy_.back().time >= world_->time()) energy_.pop_back();
+    while (!contact_work_.empty() && contact_work_.back().first > world_->time()) contact_work_.pop_back();
     sample_energy();
     last_collision_.reset();
     clock_.reset();
@@ -434,12 +441,18 @@ void Demo::note_collision() {
     last_collision_ = std::move(hit);
 }
 
+double Demo::contact_work_last_second() const {
+    double sum = 0.0;
+    for (const auto& [time, work] : contact_work_) sum += work;
+    return sum;
+}
+
 void Demo::sample_energy() {
     const Energy e = world_->energy();
     std::vector<double> compared;
     for (ComparedWorld& c : compared_) compared.push_back(c.world->energy().total());
     energy_.push_back({world_->time(), e.kinetic, e.gravity, e.elastic, e.total(), e.rotational,
-                       length(world_->angular_momentum()), std::move(compared)});
+                       length(world_->angular_momentum()), contact_work_last_second(), std::move(compared)});
     while (energy_.size() > kEnergySamples) energy_.pop_front();
 }
 

@@ -24,6 +24,7 @@ struct EnergySample {
     double time, kinetic, gravity, elastic, total;
     double rotational;        // the rigid bodies' part of the kinetic energy
     double angular_momentum;  // |L| about the origin, every body
+    double contacts;          // what the rigid contacts did in the last second (J; < 0: took)
     std::vector<double> compared;  // each compared world's total (Demo::compared()), in order
 };
 
@@ -121,6 +122,7 @@ public:
     int ticks_last_frame() const { return ticks_last_frame_; }
     double physics_ms_per_tick() const { return physics_ms_per_tick_; }
     const std::deque<EnergySample>& energy_history() const { return energy_; }
+    double contact_work_last_second() const;  // J, World::contact_energy() over the last second's ticks
     const std::optional<LastCollision>& last_collision() const { return last_collision_; }
     const std::string& error() const { return error_; }
     void set_error(std::string message) { error_ = std::move(message); }
@@ -189,6 +191,7 @@ private:
     std::string error_;
     std::string source_;
     std::deque<EnergySample> energy_;
+    std::deque<std::pair<double, double>> contact_work_;  // (time, a tick's contact energy), the last second
     std::optional<LastCollision> last_collision_;
     std::optional<std::pair<std::size_t, std::uint32_t>> inspected_particle_;  // soft body, particle
     std::optional<std::size_t> inspected_rigid_;

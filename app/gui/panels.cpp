@@ -233,9 +233,14 @@ void Panels::energy(Demo& demo) {
     }
     // The rigid bodies' rotational energy is drawn when there are rigid bodies.
     const bool rotation = demo.world().rigid_body_count() > 0;
-    const int series_count = rotation ? 5 : 4;
+    const int series_count = rotation ? 6 : 4;
     const auto value_of = [](const EnergySample& s, int series) {
-        return series == 0 ? s.kinetic : series == 1 ? s.gravity : series == 2 ? s.elastic : series == 3 ? s.total : s.rotational;
+        return series == 0   ? s.kinetic
+               : series == 1 ? s.gravity
+               : series == 2 ? s.elastic
+               : series == 3 ? s.total
+               : series == 4 ? s.rotational
+                             : s.contacts;
     };
     double lo = 1e300, hi = -1e300;
     for (const auto& s : history) {
@@ -250,8 +255,8 @@ void Panels::energy(Demo& demo) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
     draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
     const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
-    const ImU32 colours[5] = {IM_COL32(90, 170, 255, 255), IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
-                              IM_COL32(240, 240, 240, 255), IM_COL32(250, 200, 30, 255)};
+    const ImU32 colours[6] = {IM_COL32(90, 170, 255, 255), IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
+                              IM_COL32(240, 240, 240, 255), IM_COL32(250, 200, 30, 255), IM_COL32(240, 90, 90, 255)};
     for (int series = 0; series < series_count; ++series) {
         std::vector<ImVec2> points;
         points.reserve(history.size());
@@ -265,7 +270,7 @@ void Panels::energy(Demo& demo) {
     ImGui::Dummy(size);
     const char* names[5] = {"kinetic", "gravity", "elastic", "total", "rotational"};
     const auto& last = history.back();
-    for (int series = 0; series < series_count; ++series) {
+    for (int series = 0; series < std::min(series_count, 5); ++series) {
         if (series % 2) ImGui::SameLine(180 * scale_);
         ImGui::TextColored(ImColor(colours[series]), "%s %.3g J", names[series], value_of(last, series));
     }
@@ -273,6 +278,11 @@ void Panels::energy(Demo& demo) {
         ImGui::SameLine(180 * scale_);
         ImGui::Text("|L| %.3g kg m^2/s", last.angular_momentum);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Total angular momentum about the origin, every body: conserved without torques.");
+        ImGui::TextColored(ImColor(colours[5]), "contacts: %+.3g J this second", last.contacts);
+        if (ImGui::IsItemHovered()) {
+            ImGui::SetTooltip("What the rigid contacts' impulses (Eq. 38) did to the energy over the last second: never more\n"
+                              "than zero. A bounce with e < 1 and friction take energy; a body resting on another, none.");
+        }
     }
     ImGui::TextDisabled("last %.0f s, from %.1f to %.1f J", t1 - t0, lo, hi);
     if (demo.comparing()) energy_by_integrator(demo);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -379,6 +380,42 @@ TEST(Simulate, DivergingRunExitsWithThreeAndSaysWhatToChange) {
     // NaN; nlohmann writes a non-finite number as null).
     EXPECT_TRUE(j.at("energy").at("total").is_number());
     for (const auto& c : j.at("com")) EXPECT_TRUE(c.is_number());
+}
+
+// What the contacts did to the energy: a 2 kg ball dropped 1 m onto the ground with e = 0.5
+// (RK4, whose free flight is exact): over its first bounce the contacts take 1 - e^2 of the
+// 19.62 J it met the ground with (m g h), and the bounce gives back e^2 of it (to 1%).
+TEST(Simulate, ContactsEnergySaysWhatABounceTook) {
+    TempDir dir;
+    const std::string scene = dir.write(
+        "ball.json", "{\"restitution\": 0.5, \"integrator\": \"rk4\", \"rigid_bodies\": [{\"name\": \"ball\","
+                     " \"shape\": \"sphere\", \"radius\": 0.1, \"mass\": 2, \"position\": [0, 0, 1.1]}]}");
+    const Result r = run({"simulate", "--scene", scene, "--ticks", "40"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json e = json::parse(r.out).at("contacts_energy");
+    const double met = 2.0 * 9.81 * 1.0;
+    EXPECT_NEAR(e.at("total").get<double>(), -0.75 * met, 0.01 * met);
+    EXPECT_NEAR(e.at("restitution").get<double>(), 0.25 * met, 0.01 * met);
+    EXPECT_NEAR(e.at("last_second").get<double>(), e.at("total").get<double>(), 1e-9);  // 40 ticks < 1 s
+}
+
+// Explicit Euler gains energy in free rotation (Listing 9): on random scenes it may diverge, and
+// then it says so in one line with exit 3 and a summary of the last good state; never a crash.
+TEST(Simulate, ExplicitEulerOnRandomScenesRunsOrStopsInOneLine) {
+    int diverged = 0;
+    for (int seed = 1; seed <= 12; ++seed) {
+        const Result r = run({"simulate", "--scene", "random:" + std::to_string(seed), "--set", "integrator=explicit_euler",
+                              "--seconds", "5", "--threads", "1"});
+        ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 3) << describe(r);
+        const json j = json::parse(r.out);
+        EXPECT_TRUE(j.at("energy").at("total").is_number());
+        if (r.exit_code == 3) {
+            ++diverged;
+            EXPECT_EQ(j.at("status"), "diverged");
+            EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr is not one line:\n" << r.err;
+        }
+    }
+    std::printf("explicit Euler: %d of 12 random scenes diverged\n", diverged);
 }
 
 // --- Threads ----------------------------------------------------------------------------------
