@@ -21,6 +21,15 @@ namespace softbody {
 // counts as deepest: a cylinder standing on its cap has 32 rim points at one depth, and the
 // slightest tilt would otherwise start the four from a different corner. Zero (the default)
 // keeps only exact ties.
+//
+// After the first, a point overlapping by more than kManifoldOverlap goes before any that does
+// not, whatever the area: a cylinder lying on its side has its two bottom corners deepest, and
+// the corners of the sides next to them, a few millimetres up, span more area with the first;
+// kept instead of the second bottom corner, they let that end sink unheld (a cylinder in a pile
+// rocked end to end 10 mm into the ground). Points within kManifoldOverlap of touching (a face
+// resting, its corners at rounding's depths) are chosen by area alone.
+inline constexpr double kManifoldOverlap = 5e-4;  // m
+
 template <class Contact>
 void reduce_manifold(std::vector<Contact>& points, const Vec3d& n, double depth_tie = 0.0) {
     if (points.size() <= 4) return;
@@ -28,11 +37,18 @@ void reduce_manifold(std::vector<Contact>& points, const Vec3d& n, double depth_
     std::vector<Contact> kept;
     // The earliest point whose score is within `tie` of the best.
     const auto take = [&](auto score, double tie) {
+        const bool first = kept.empty();
+        const auto overlapping = [&](const Contact& c) { return !first && c.depth > kManifoldOverlap; };
+        bool any_overlapping = false;
+        for (const Contact& c : points) any_overlapping = any_overlapping || overlapping(c);
+        const auto candidate = [&](const Contact& c) { return !any_overlapping || overlapping(c); };
         double best_score = -1e300;
-        for (const Contact& c : points) best_score = std::max(best_score, score(c));
+        for (const Contact& c : points) {
+            if (candidate(c)) best_score = std::max(best_score, score(c));
+        }
         const double enough = best_score - tie;
         std::size_t best = 0;
-        while (best < points.size() && !(score(points[best]) >= enough)) ++best;
+        while (best < points.size() && !(candidate(points[best]) && score(points[best]) >= enough)) ++best;
         if (best == points.size()) best = 0;  // scores that are not numbers: the first
         kept.push_back(points[best]);
         points.erase(points.begin() + static_cast<std::ptrdiff_t>(best));
