@@ -14,6 +14,7 @@
 #include "message_text.h"
 #include "particle_contacts.h"
 #include "rigid_contacts.h"
+#include "soft_contacts.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -48,6 +49,7 @@ World::World(WorldDef def, WorldOptions options)
     : params_(def.params),
       rigid_contact_scratch_(std::make_unique<RigidContactScratch>()),
       solver_(std::make_unique<ContactSolver>()),
+      soft_contacts_(std::make_unique<SoftContacts>()),
       reference_kernel_(options.reference_kernel) {
     validate(params_);
     pool_ = std::make_unique<ThreadPool>(std::max(1, options.threads));
@@ -85,6 +87,8 @@ World::~World() = default;
 
 void World::build() {
     for (SoftBody& body : soft_) build_particles(body);
+    soft_contacts_->build(soft_);
+    soft_touching_ = false;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         std::copy(rigid_[b].initial.begin(), rigid_[b].initial.end(), y_.begin() + std::ptrdiff_t(b * rigid::kStateSize));
     }
@@ -100,6 +104,8 @@ void World::build() {
 }
 
 void World::reset() { build(); }
+
+const std::vector<SoftContact>& World::soft_contacts() const { return soft_contacts_->contacts(); }
 
 WorldSnapshot World::snapshot() const {
     WorldSnapshot out;
@@ -378,6 +384,7 @@ void World::step(float h) {
     if (contacts) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
+    if (soft_touching_) soft_contacts_->begin_substep(soft_);
     switch (params_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
@@ -418,6 +425,7 @@ void World::step(float h) {
     // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
     if (contacts) solver_->substep(contact_world());
+    if (soft_touching_) soft_contacts_->solve(soft_, params_, h);
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
@@ -532,6 +540,10 @@ void World::tick() {
     if (params_.auto_substeps) substeps = std::max(substeps, rotation_substeps());
     contact_energy_ = {};
     tick_substeps_ = 0;
+    // Soft bodies within reach of one another (or of themselves): found before the last
+    // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
+    soft_touching_ = soft_contacts_->find(soft_, params_, params_.dt);
+    if (soft_touching_) substeps = std::max(substeps, kContactSubsteps);
     int intervals = 1;
     for (int i = 0; i < intervals; ++i) {
         const double interval = double(params_.dt) / double(intervals);

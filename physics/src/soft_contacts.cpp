@@ -1,0 +1,349 @@
+#include "soft_contacts.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace softbody {
+
+namespace {
+
+constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
+constexpr int kPasses = 8;             // over every contact of a substep (Gauss-Seidel)
+
+// The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
+// region p falls in (a corner, an edge, or the face), each tested with dot products only.
+std::array<float, 3> nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return {1.0f, 0.0f, 0.0f};
+    const Vec3 bp = p - b;
+    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return {0.0f, 1.0f, 0.0f};
+    const float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+        const float t = d1 / (d1 - d3);
+        return {1.0f - t, t, 0.0f};
+    }
+    const Vec3 cp = p - c;
+    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return {0.0f, 0.0f, 1.0f};
+    const float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+        const float t = d2 / (d2 - d6);
+        return {1.0f - t, 0.0f, t};
+    }
+    const float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+        const float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {0.0f, 1.0f - t, t};
+    }
+    const float sum = va + vb + vc;
+    if (!(sum > 0.0f)) return {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};  // a degenerate triangle: its centre
+    const float v = vb / sum, w = vc / sum;
+    return {1.0f - v - w, v, w};
+}
+
+Box3f box_of(const Vec3& p, float grow) { return {p - Vec3{grow, grow, grow}, p + Vec3{grow, grow, grow}}; }
+
+// Half the median distance from a particle to its nearest neighbour: the radius of a point
+// cloud's particles (balls that just touch their neighbours). By a sweep along x: each
+// particle looks at the particles after it in x order until the x gap alone is farther than
+// the nearest found.
+float cloud_radius(const Vec3Array& x) {
+    const std::size_t n = x.size();
+    if (n < 2) return kSurfaceThickness;
+    std::vector<std::uint32_t> order(n);
+    for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return x.x[a] < x.x[b] || (x.x[a] == x.x[b] && a < b); });
+    std::vector<float> nearest(n, INFINITY);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t i = order[k];
+        for (std::size_t m = k + 1; m < n; ++m) {
+            const std::uint32_t j = order[m];
+            const float gap = x.x[j] - x.x[i];
+            if (gap * gap >= nearest[i] && gap * gap >= nearest[j]) break;
+            const Vec3 d = x[j] - x[i];
+            const float d2 = dot(d, d);
+            nearest[i] = std::min(nearest[i], d2);
+            nearest[j] = std::min(nearest[j], d2);
+        }
+    }
+    std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(n / 2), nearest.end());
+    const float r = 0.5f * std::sqrt(nearest[n / 2]);
+    return std::isfinite(r) && r > 0.0f ? r : kSurfaceThickness;
+}
+
+float distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto w = nearest_on_triangle(p, a, b, c);
+    return length(p - (a * w[0] + b * w[1] + c * w[2]));
+}
+
+}  // namespace
+
+void SoftContacts::build(const std::vector<SoftBody>& bodies) {
+    surfaces_.assign(bodies.size(), {});
+    reach_.assign(bodies.size(), {});
+    dv_.assign(bodies.size(), {});
+    touched_.assign(bodies.size(), {});
+    marked_.assign(bodies.size(), {});
+    pairs_.clear();
+    active_.clear();
+    touching_.clear();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const SoftBody& body = bodies[b];
+        Surface& s = surfaces_[b];
+        // The simulated particles' surface: the mesh's own, or a reduced body's particle mesh.
+        const Mesh& mesh = body.reduced ? body.particle_mesh : body.mesh;
+        for (const auto& t : particle_triangles(mesh)) {
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+            if (t[0] >= body.particle_count() || t[1] >= body.particle_count() || t[2] >= body.particle_count()) continue;
+            s.triangles.insert(s.triangles.end(), t.begin(), t.end());
+        }
+        s.radius = s.triangles.empty() ? cloud_radius(body.rest) : 0.0f;
+        dv_[b].resize(body.particle_count());
+        marked_[b].assign(body.particle_count(), 0);
+    }
+}
+
+void SoftContacts::prim_points(const Pair& pair, std::uint32_t out[3]) const {
+    const Surface& s = surfaces_[pair.b];
+    if (s.triangles.empty()) {
+        out[0] = out[1] = out[2] = pair.prim;
+        return;
+    }
+    out[0] = s.triangles[3 * pair.prim];
+    out[1] = s.triangles[3 * pair.prim + 1];
+    out[2] = s.triangles[3 * pair.prim + 2];
+}
+
+bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world, double dt) {
+    pairs_.clear();
+    if (surfaces_.size() != bodies.size()) build(bodies);
+    bool wanted = false;
+    for (const SoftBody& body : bodies) wanted = wanted || body.params.self_collision;
+    if (bodies.size() < 2 && !wanted) return false;
+    const float h = float(dt), g = length(world.gravity);
+    // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
+    // speed, with gravity, twice what its last tick's forces added to the way it went, and a
+    // millimetre. Each body's box with it.
+    std::vector<Box3f> whole(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const SoftBody& body = bodies[b];
+        std::vector<float>& reach = reach_[b];
+        reach.resize(body.particle_count());
+        for (std::size_t i = 0; i < body.particle_count(); ++i) {
+            const Vec3 p = body.x[i];
+            const float pushed = length(p - body.x_tick_prev[i] - body.v[i] * h);
+            reach[i] = h * length(body.v[i]) + 2.0f * pushed + h * h * g + 1e-3f;
+            const Box3f box = box_of(p, reach[i] + surfaces_[b].radius + kSurfaceThickness);
+            if (i == 0) whole[b] = box;
+            else whole[b].grow(box);
+        }
+    }
+    // Which pairs of bodies can meet at all; each body's tree refit only when some can.
+    const auto meets = [&](std::size_t a, std::size_t b) {
+        if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
+        return whole[a].overlaps(whole[b]);
+    };
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        bool needed = false;
+        for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
+        if (!needed) continue;
+        const SoftBody& body = bodies[b];
+        Surface& s = surfaces_[b];
+        const std::vector<float>& reach = reach_[b];
+        const bool faces = !s.triangles.empty();
+        const std::size_t count = faces ? s.triangles.size() / 3 : body.particle_count();
+        s.boxes.resize(count);
+        for (std::size_t t = 0; t < count; ++t) {
+            if (!faces) {
+                s.boxes[t] = box_of(body.x[t], reach[t]);
+                continue;
+            }
+            const std::uint32_t* v = &s.triangles[3 * t];
+            Box3f box = box_of(body.x[v[0]], reach[v[0]]);
+            box.grow(box_of(body.x[v[1]], reach[v[1]]));
+            box.grow(box_of(body.x[v[2]], reach[v[2]]));
+            s.boxes[t] = box;
+        }
+        if (s.tree.empty()) s.tree.build(s.boxes);
+        else s.tree.refit(s.boxes);
+    }
+    for (std::size_t a = 0; a < bodies.size(); ++a) {
+        const SoftBody& A = bodies[a];
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            if (!meets(a, b)) continue;
+            const SoftBody& B = bodies[b];
+            const Surface& s = surfaces_[b];
+            const bool faces = !s.triangles.empty();
+            // Two point clouds meet once, ball against ball; a body with faces meets a point
+            // cloud particle against particle as well as the cloud's particles against its faces.
+            if (!faces && surfaces_[a].triangles.empty() && b < a) continue;
+            const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
+            for (std::uint32_t p = 0; p < A.particle_count(); ++p) {
+                if (!whole[b].overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) continue;
+                const bool fixed_p = A.inv_mass[p] == 0.0f;
+                s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
+                    Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d};
+                    std::uint32_t v[3];
+                    prim_points(pair, v);
+                    if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+                    if (a == b) {
+                        // Self contact: never a triangle the particle is a corner of, nor one
+                        // it was within reach of at rest (the same stretch of surface).
+                        if (v[0] == p || v[1] == p || v[2] == p) return;
+                        if (distance_to_triangle(A.rest[p], A.rest[v[0]], A.rest[v[1]], A.rest[v[2]]) < 2.0f * d) return;
+                    }
+                    pairs_.push_back(pair);
+                });
+            }
+        }
+    }
+    return !pairs_.empty();
+}
+
+void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies) {
+    active_.clear();
+    for (const Pair& pair : pairs_) {
+        const SoftBody& A = bodies[pair.a];
+        const SoftBody& B = bodies[pair.b];
+        Active c;
+        c.c.body_a = pair.a;
+        c.c.particle = pair.p;
+        c.c.body_b = pair.b;
+        prim_points(pair, c.c.other);
+        const Vec3 p = A.x[pair.p];
+        const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
+        std::array<float, 3> w{1.0f, 0.0f, 0.0f};
+        if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
+        const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
+        Vec3 n = p - q;
+        const float dist = length(n);
+        if (dist > 1e-7f) {
+            n = n / dist;
+        } else {
+            // On the surface itself: the face's normal (the way the face is wound).
+            n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
+            const float l = length(n);
+            n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+        }
+        const float gap = dist - pair.distance;
+        // Within reach of this tick only (the pair was found for the whole of it).
+        const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
+        if (gap > reach) continue;
+        c.c.weight[0] = w[0];
+        c.c.weight[1] = w[1];
+        c.c.weight[2] = w[2];
+        if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
+        c.c.normal = Vec3d(n);
+        c.c.separation = gap;
+        c.c.distance = pair.distance;
+        // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
+        // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
+        float inv = A.inv_mass[pair.p];
+        for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
+        if (!(inv > 0.0f)) continue;
+        c.inv_mass_sum = inv;
+        Vec3 v_rel = A.v[pair.p];
+        for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
+        c.bounce = -dot(v_rel, n);
+        active_.push_back(c);
+    }
+}
+
+void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, float h) {
+    touching_.clear();
+    if (active_.empty()) return;
+    const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
+    // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
+    const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
+    const auto relative = [&](const Active& c) {
+        const SoftBody& A = bodies[c.c.body_a];
+        const SoftBody& B = bodies[c.c.body_b];
+        Vec3 v = A.v[c.c.particle];
+        for (int k = 0; k < 3; ++k) v -= B.v[c.c.other[k]] * c.c.weight[k];
+        return v;
+    };
+    const auto position = [&](const Active& c) {
+        const SoftBody& A = bodies[c.c.body_a];
+        const SoftBody& B = bodies[c.c.body_b];
+        Vec3 d = A.x[c.c.particle];
+        for (int k = 0; k < 3; ++k) d -= B.x[c.c.other[k]] * c.c.weight[k];
+        return d;
+    };
+    const auto apply = [&](const Active& c, const Vec3& J) {
+        SoftBody& A = bodies[c.c.body_a];
+        SoftBody& B = bodies[c.c.body_b];
+        const auto push = [&](std::uint32_t body, SoftBody& s, std::uint32_t i, const Vec3& impulse) {
+            const float im = s.inv_mass[i];
+            if (im == 0.0f) return;
+            const Vec3 dv = impulse * im;
+            s.v.add(i, dv);
+            dv_[body].add(i, dv);
+            if (!marked_[body][i]) {
+                marked_[body][i] = 1;
+                touched_[body].push_back(i);
+            }
+        };
+        push(c.c.body_a, A, c.c.particle, J);
+        for (int k = 0; k < 3; ++k) {
+            if (c.c.weight[k] != 0.0f) push(c.c.body_b, B, c.c.other[k], J * -c.c.weight[k]);
+        }
+    };
+    // Each contact's target: the normal velocity that brings its gap to zero at the step's end
+    // (the free step's gap over h, taken from its normal velocity; at most kPushSpeed apart
+    // where it overlapped already), or the bounce's -e v_n when it was hit faster than
+    // bounce_speed and meets the surface in this step.
+    for (Active& c : active_) {
+        const Vec3 n = to_float(c.c.normal);
+        const float gap_free = dot(position(c), n) - float(c.c.distance);
+        const float v_n = dot(relative(c), n);
+        c.target = std::min(v_n - gap_free / h, kPushSpeed);
+        if (gap_free < 0.0f && c.bounce > bounce_speed) c.target = std::max(c.target, e * c.bounce);
+        c.c.normal_impulse = 0.0;
+        c.friction = {};
+    }
+    for (int pass = 0; pass < kPasses; ++pass) {
+        for (Active& c : active_) {
+            const Vec3 n = to_float(c.c.normal);
+            // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
+            const float v_n = dot(relative(c), n);
+            const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
+            const float dl = lambda - float(c.c.normal_impulse);
+            c.c.normal_impulse = lambda;
+            if (dl != 0.0f) apply(c, n * dl);
+            // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
+            // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
+            const Vec3 v = relative(c);
+            const Vec3 v_t = v - n * dot(v, n);
+            Vec3 total = c.friction - v_t / c.inv_mass_sum;
+            const float size = length(total);
+            if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
+            const Vec3 df = total - c.friction;
+            c.friction = total;
+            if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
+        }
+    }
+    // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
+    const bool verlet = world.integrator == Integrator::Verlet;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        SoftBody& body = bodies[b];
+        for (std::uint32_t i : touched_[b]) {
+            const Vec3 dv = dv_[b][i];
+            body.x.add(i, dv * h);
+            if (verlet) body.verlet_step.add(i, dv * h);
+            dv_[b].set(i, {});
+            marked_[b][i] = 0;
+        }
+        touched_[b].clear();
+    }
+    for (const Active& c : active_) {
+        if (c.c.normal_impulse <= 0.0) continue;
+        SoftContact out = c.c;
+        out.tangent_impulse = length(c.friction);
+        touching_.push_back(out);
+    }
+}
+
+}  // namespace softbody

@@ -1,0 +1,94 @@
+// Internal to the physics library: soft bodies against one another, and a body against itself
+// (self_collision): every particle of a soft body against the triangles of every other soft
+// body's surface, or, where a body has no faces (a point cloud), against its particles.
+//
+// The contact model: a point against a thick triangle. A particle stays at least the contact
+// distance d from the nearest point of the other surface (d = kSurfaceThickness for a
+// triangle, plus the particle's radius; a point cloud's particles are balls of half their
+// usual spacing). Speculative, as the rigid contacts are: the pairs are found once a tick
+// within how far their particles can move in it (a bounding-volume tree per body, refit every
+// tick: bvh.h), and each substep
+//   begin_substep  the nearest point and its normal where the substep begins (before the
+//                  integrator): n points from the surface toward the particle, and stays
+//                  fixed for the substep, so that a particle that would cross the surface in
+//                  this step is still pushed back the way it came
+//   solve          after the integrator's free step: impulses along n (Eq. 38 with the
+//                  particle as body 1, no rotation term; body 2 the surface point, whose
+//                  inverse mass is sum w_i^2 / m_i over its three particles) so that the gap
+//                  at the step's end is not below d; with restitution for impacts, and
+//                  Coulomb friction in impulse form (Eq. 24, 25: the tangential impulse that
+//                  would stop the slide when within mu_s lambda, else mu_d lambda against the
+//                  slide). The particle takes J, the surface's particles -w_i J: momentum is
+//                  kept exactly. Then the positions move on by h times the velocity the
+//                  impulses changed (and Verlet's step with them), as contact_solver.h does.
+// Why this and not a continuous test: with the normal fixed where the substep begins and the
+// gap measured where the free step ends, a particle is stopped at the surface however fast it
+// comes (it can only close the gap it had), which is what a continuous test buys, at the cost
+// of one nearest-point query per pair and substep. And a body resting on another rests: the
+// gap each substep's gravity closes is exactly what the impulse takes away (the target is a
+// gap of zero at the step's end), so nothing jitters and nothing creeps in.
+// What it does not catch: two edges crossing with no particle near the other's surface
+// (coarse meshes, edge on edge). Meshes with particles a few thicknesses apart do not show it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bvh.h"
+#include "physics/contact.h"
+#include "physics/params.h"
+#include "physics/soft_body.h"
+
+namespace softbody {
+
+// m: how thick a soft body's surface is for contacts (the gap two touching bodies keep).
+inline constexpr float kSurfaceThickness = 0.005f;
+
+class SoftContacts {
+public:
+    // Each body's surface (its triangles on its simulated particles), or for a body without
+    // faces its particles' radius; the trees. Call whenever the bodies are built.
+    void build(const std::vector<SoftBody>& bodies);
+    // The pairs within reach over the tick of dt, found where the bodies are as it begins
+    // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
+    // particles may go in this one). Returns whether there are any.
+    bool find(const std::vector<SoftBody>& bodies, const Params& world, double dt);
+    bool empty() const { return pairs_.empty(); }
+    // Before the integrator moves the particles: each pair's nearest point and normal.
+    void begin_substep(const std::vector<SoftBody>& bodies);
+    // After the integrator's free step of h (and the rigid contacts): the impulses.
+    void solve(std::vector<SoftBody>& bodies, const Params& world, float h);
+    // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
+    const std::vector<SoftContact>& contacts() const { return touching_; }
+
+private:
+    struct Surface {
+        std::vector<std::uint32_t> triangles;  // three particles each
+        float radius = 0.0f;                   // of each particle: 0 with faces, else half the spacing
+        Bvh tree;                              // over the triangles, or over the particles without faces
+        std::vector<Box3f> boxes;
+    };
+    struct Pair {
+        std::uint32_t a, p, b, prim;  // particle p of body a against triangle (or particle) prim of body b
+        float distance;               // d
+    };
+    struct Active {
+        SoftContact c;
+        float inv_mass_sum = 0.0f;    // Eq. 38's denominator: 1/m_p + sum w_i^2 / m_i
+        float target = 0.0f;          // the least normal velocity the step may end with, m/s
+        float bounce = 0.0f;          // closing speed as the substep began, m/s (> 0: closing)
+        Vec3 friction;                // accumulated tangential impulse
+    };
+    void prim_points(const Pair& pair, std::uint32_t out[3]) const;
+
+    std::vector<Surface> surfaces_;
+    std::vector<Pair> pairs_;
+    std::vector<Active> active_;
+    std::vector<SoftContact> touching_;
+    std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
+    std::vector<Vec3Array> dv_;               // per body: the velocity the impulses added this substep
+    std::vector<std::vector<std::uint32_t>> touched_;  // per body: particles with a dv
+    std::vector<std::vector<std::uint8_t>> marked_;
+};
+
+}  // namespace softbody
