@@ -9,7 +9,8 @@ namespace softbody {
 namespace {
 
 constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
-constexpr int kPasses = 8;             // over every contact of a substep (Gauss-Seidel)
+constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
+constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity more than this ends them
 
 // The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
 // region p falls in (a corner, an edge, or the face), each tested with dot products only.
@@ -184,6 +185,9 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
             for (std::uint32_t p = 0; p < A.particle_count(); ++p) {
                 if (!whole[b].overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) continue;
                 const bool fixed_p = A.inv_mass[p] == 0.0f;
+                const std::size_t group = pairs_.size();
+                float nearest = INFINITY;
+                Vec3 nearest_away;
                 s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
                     Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d};
                     std::uint32_t v[3];
@@ -195,60 +199,123 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
                         if (v[0] == p || v[1] == p || v[2] == p) return;
                         if (distance_to_triangle(A.rest[p], A.rest[v[0]], A.rest[v[1]], A.rest[v[2]]) < 2.0f * d) return;
                     }
+                    // Within reach by the nearest point, not just by the boxes: a particle's box
+                    // meets a dozen small triangles of which one or two can matter.
+                    if (faces) {
+                        const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
+                        const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+                        const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
+                        const float distance = length(away);
+                        if (distance > d + r) return;
+                        if (distance < nearest) {
+                            nearest = distance;
+                            nearest_away = away;
+                        }
+                        pair.found_at = distance;
+                        pair.reach = r;
+                        pair.away = away;
+                    }
                     pairs_.push_back(pair);
                 });
+                // A particle's contact with a surface is its nearest point, and the nearest on
+                // its other side (begin_substep): of its triangles, only those that can come
+                // nearer in the tick than the nearest one can go away, and those across it.
+                if (faces && pairs_.size() > group + 1) {
+                    std::size_t kept = group;
+                    for (std::size_t k = group; k < pairs_.size(); ++k) {
+                        const Pair& q = pairs_[k];
+                        if (q.found_at - q.reach <= nearest + q.reach || dot(q.away, nearest_away) < 0.0f) pairs_[kept++] = q;
+                    }
+                    pairs_.resize(kept);
+                }
             }
         }
     }
     return !pairs_.empty();
 }
 
+// The contact of one pair where the substep begins: the nearest point, its weights and normal,
+// Eq. 38's denominator and the closing speed. False when out of reach for the rest of the tick.
+bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const {
+    const SoftBody& A = bodies[pair.a];
+    const SoftBody& B = bodies[pair.b];
+    c.c.body_a = pair.a;
+    c.c.particle = pair.p;
+    c.c.body_b = pair.b;
+    prim_points(pair, c.c.other);
+    const Vec3 p = A.x[pair.p];
+    const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
+    std::array<float, 3> w{1.0f, 0.0f, 0.0f};
+    if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
+    const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
+    Vec3 n = p - q;
+    const float dist = length(n);
+    if (dist > 1e-7f) {
+        n = n / dist;
+    } else {
+        // On the surface itself: the face's normal (the way the face is wound).
+        n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
+        const float l = length(n);
+        n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+    }
+    const float gap = dist - pair.distance;
+    // Within reach of this tick only (the pair was found for the whole of it).
+    const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
+    if (gap > reach) return false;
+    c.c.weight[0] = w[0];
+    c.c.weight[1] = w[1];
+    c.c.weight[2] = w[2];
+    if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
+    c.c.normal = Vec3d(n);
+    c.c.separation = gap;
+    c.c.distance = pair.distance;
+    // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
+    // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
+    float inv = A.inv_mass[pair.p];
+    for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
+    if (!(inv > 0.0f)) return false;
+    c.inv_mass_sum = inv;
+    Vec3 v_rel = A.v[pair.p];
+    for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
+    c.bounce = -dot(v_rel, n);
+    return true;
+}
+
 void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies) {
     active_.clear();
-    for (const Pair& pair : pairs_) {
-        const SoftBody& A = bodies[pair.a];
-        const SoftBody& B = bodies[pair.b];
+    // One contact per particle and surface: its nearest triangle (the pairs of one particle and
+    // body come one after another), and the nearest on the other side of the particle if there
+    // is one (a particle between two layers of a folded sheet). The other triangles within
+    // reach would only push along nearly the same normal, and cost the solver's passes. Found
+    // again every substep: a particle sliding fast crosses a small triangle in a tick.
+    std::size_t group = 0;
+    std::uint32_t group_a = ~0u, group_p = ~0u, group_b = ~0u;
+    for (std::uint32_t k = 0; k < pairs_.size(); ++k) {
+        const Pair& pair = pairs_[k];
         Active c;
-        c.c.body_a = pair.a;
-        c.c.particle = pair.p;
-        c.c.body_b = pair.b;
-        prim_points(pair, c.c.other);
-        const Vec3 p = A.x[pair.p];
-        const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
-        std::array<float, 3> w{1.0f, 0.0f, 0.0f};
-        if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
-        const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
-        Vec3 n = p - q;
-        const float dist = length(n);
-        if (dist > 1e-7f) {
-            n = n / dist;
-        } else {
-            // On the surface itself: the face's normal (the way the face is wound).
-            n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
-            const float l = length(n);
-            n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+        if (!make_contact(bodies, pair, c)) continue;
+        if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
+            active_.push_back(c);
+            continue;
         }
-        const float gap = dist - pair.distance;
-        // Within reach of this tick only (the pair was found for the whole of it).
-        const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
-        if (gap > reach) continue;
-        c.c.weight[0] = w[0];
-        c.c.weight[1] = w[1];
-        c.c.weight[2] = w[2];
-        if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
-        c.c.normal = Vec3d(n);
-        c.c.separation = gap;
-        c.c.distance = pair.distance;
-        // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
-        // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
-        float inv = A.inv_mass[pair.p];
-        for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
-        if (!(inv > 0.0f)) continue;
-        c.inv_mass_sum = inv;
-        Vec3 v_rel = A.v[pair.p];
-        for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
-        c.bounce = -dot(v_rel, n);
-        active_.push_back(c);
+        if (pair.a != group_a || pair.p != group_p || pair.b != group_b) {
+            group = active_.size();
+            group_a = pair.a;
+            group_p = pair.p;
+            group_b = pair.b;
+        }
+        if (active_.size() == group) {
+            active_.push_back(c);
+            continue;
+        }
+        const bool opposite = dot(c.c.normal, active_[group].c.normal) < 0.0;
+        if (!opposite) {
+            if (c.c.separation < active_[group].c.separation) active_[group] = c;
+        } else if (active_.size() == group + 1) {
+            active_.push_back(c);
+        } else if (c.c.separation < active_[group + 1].c.separation) {
+            active_[group + 1] = c;
+        }
     }
 }
 
@@ -305,6 +372,7 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, flo
         c.friction = {};
     }
     for (int pass = 0; pass < kPasses; ++pass) {
+        float largest = 0.0f;  // the largest velocity change of the pass
         for (Active& c : active_) {
             const Vec3 n = to_float(c.c.normal);
             // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
@@ -323,7 +391,10 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, flo
             const Vec3 df = total - c.friction;
             c.friction = total;
             if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
+            largest = std::max(largest, (std::abs(dl) + length(df)) * c.inv_mass_sum);
         }
+        // Converged: no contact's velocity moved by more than kSettled in the whole pass.
+        if (largest < kSettled) break;
     }
     // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
     const bool verlet = world.integrator == Integrator::Verlet;

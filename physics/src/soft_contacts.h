@@ -11,7 +11,9 @@
 //   begin_substep  the nearest point and its normal where the substep begins (before the
 //                  integrator): n points from the surface toward the particle, and stays
 //                  fixed for the substep, so that a particle that would cross the surface in
-//                  this step is still pushed back the way it came
+//                  this step is still pushed back the way it came. Of each particle's
+//                  triangles in reach it keeps the nearest (and the nearest across it, between
+//                  two layers of a sheet)
 //   solve          after the integrator's free step: impulses along n (Eq. 38 with the
 //                  particle as body 1, no rotation term; body 2 the surface point, whose
 //                  inverse mass is sum w_i^2 / m_i over its three particles) so that the gap
@@ -71,6 +73,9 @@ private:
     struct Pair {
         std::uint32_t a, p, b, prim;  // particle p of body a against triangle (or particle) prim of body b
         float distance;               // d
+        float found_at = 0.0f;        // the nearest point's distance where the tick began, m
+        float reach = 0.0f;           // how far the two sides can close in the tick, m
+        Vec3 away;                    // from the nearest point to the particle, where the tick began
     };
     struct Active {
         SoftContact c;
@@ -80,6 +85,7 @@ private:
         Vec3 friction;                // accumulated tangential impulse
     };
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
+    bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
 
     std::vector<Surface> surfaces_;
     std::vector<Pair> pairs_;
