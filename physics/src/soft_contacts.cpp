@@ -1,5 +1,7 @@
 #include "soft_contacts.h"
 
+#include "ground_contact.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +13,10 @@ namespace {
 constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
 constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
 constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity more than this ends them
+// m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
+// the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
+// triangles between them should not stand off it by more than that.
+constexpr double kRigidThickness = 0.002;
 
 // The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
 // region p falls in (a corner, an edge, or the face), each tested with dot products only.
@@ -118,12 +124,18 @@ void SoftContacts::prim_points(const Pair& pair, std::uint32_t out[3]) const {
     out[2] = s.triangles[3 * pair.prim + 2];
 }
 
-bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world, double dt) {
+bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                        const Params& world, double dt) {
     pairs_.clear();
+    rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
-    bool wanted = false;
-    for (const SoftBody& body : bodies) wanted = wanted || body.params.self_collision;
-    if (bodies.size() < 2 && !wanted) return false;
+    bool wanted = false, any_faces = false;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        wanted = wanted || bodies[b].params.self_collision;
+        any_faces = any_faces || !surfaces_[b].triangles.empty();
+    }
+    const bool rigid_near = any_faces && !rigid.empty();
+    if (bodies.size() < 2 && !wanted && !rigid_near) return false;
     const float h = float(dt), g = length(world.gravity);
     // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
     // speed, with gravity, twice what its last tick's forces added to the way it went, and a
@@ -142,6 +154,18 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
             else whole[b].grow(box);
         }
     }
+    // Each rigid body's box where the tick begins, grown by how far it can move in it
+    // (speculative_margin, ground_contact.h).
+    rigid_box_.resize(rigid.size());
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        const RigidMotion m = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
+        const double margin = rigid[r].fixed ? 0.0 : speculative_margin(rigid[r], m, dt, double(g));
+        const float grow = float(rigid[r].bounding_radius + margin + kRigidThickness);
+        rigid_box_[r] = box_of(to_float(m.x), grow);
+    }
+    const auto meets_rigid = [&](std::size_t r, std::size_t b) {
+        return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
+    };
     // Which pairs of bodies can meet at all; each body's tree refit only when some can.
     const auto meets = [&](std::size_t a, std::size_t b) {
         if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
@@ -150,6 +174,7 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bool needed = false;
         for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
+        for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(r, b);
         if (!needed) continue;
         const SoftBody& body = bodies[b];
         Surface& s = surfaces_[b];
@@ -189,7 +214,7 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
                 float nearest = INFINITY;
                 Vec3 nearest_away;
                 s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
-                    Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d};
+                    Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
                     std::uint32_t v[3];
                     prim_points(pair, v);
                     if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
@@ -231,7 +256,40 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, const Params& world
             }
         }
     }
-    return !pairs_.empty();
+    // Rigid shapes against the triangles: a sphere's centre, or each hull vertex, against every
+    // triangle whose box its body's box meets, kept when within reach by the nearest point.
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        const RigidBody& body = rigid[r];
+        const RigidMotion m = rigid_motion(body, &state[r * rigid::kStateSize]);
+        const double margin = body.fixed ? 0.0 : speculative_margin(body, m, dt, double(g));
+        const std::size_t first = rigid_pairs_.size();
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            if (!meets_rigid(r, b)) continue;
+            const SoftBody& B = bodies[b];
+            const Surface& s = surfaces_[b];
+            s.tree.query(rigid_box_[r], [&](std::uint32_t t) {
+                const std::uint32_t* v = &s.triangles[3 * t];
+                if (body.fixed && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+                const double reach = margin + double(std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]})) + kRigidThickness;
+                const auto near = [&](const Vec3d& local, double radius) {
+                    const Vec3 p = to_float(m.x + m.R * local);
+                    return double(distance_to_triangle(p, B.x[v[0]], B.x[v[1]], B.x[v[2]])) - radius <= reach;
+                };
+                if (body.shape == ShapeKind::Sphere) {
+                    if (near({}, body.radius)) rigid_pairs_.push_back({std::uint32_t(r), 0, std::uint32_t(b), t});
+                    return;
+                }
+                for (std::uint32_t k = 0; k < body.hull->vertices.size(); ++k) {
+                    if (near(body.hull->vertices[k], 0.0)) rigid_pairs_.push_back({std::uint32_t(r), k, std::uint32_t(b), t});
+                }
+            });
+        }
+        // One point's triangles together (begin_substep keeps its nearest), in a fixed order.
+        std::stable_sort(rigid_pairs_.begin() + std::ptrdiff_t(first), rigid_pairs_.end(), [](const RigidPair& x, const RigidPair& y) {
+            return x.soft < y.soft || (x.soft == y.soft && x.feature < y.feature);
+        });
+    }
+    return !pairs_.empty() || !rigid_pairs_.empty();
 }
 
 // The contact of one pair where the substep begins: the nearest point, its weights and normal,
@@ -281,8 +339,55 @@ bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair&
     return true;
 }
 
-void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies) {
+void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                 std::span<const double> state) {
     active_.clear();
+    rigid_active_.clear();
+    // Rigid points against triangles: the nearest triangle of each point (and the nearest
+    // across it), where the substep begins.
+    std::size_t rigid_group = 0;
+    for (std::size_t k = 0; k < rigid_pairs_.size(); ++k) {
+        const RigidPair& pair = rigid_pairs_[k];
+        const RigidBody& body = rigid[pair.rigid];
+        const SoftBody& B = bodies[pair.soft];
+        const RigidMotion m = rigid_motion(body, &state[pair.rigid * rigid::kStateSize]);
+        RigidActive c;
+        c.rigid = pair.rigid;
+        c.soft = pair.soft;
+        const bool sphere = body.shape == ShapeKind::Sphere;
+        c.local = sphere ? Vec3d{} : body.hull->vertices[pair.feature];
+        c.radius = sphere ? body.radius : 0.0;
+        for (int j = 0; j < 3; ++j) c.other[j] = surfaces_[pair.soft].triangles[3 * pair.tri + std::uint32_t(j)];
+        const Vec3d p = m.x + m.R * c.local;
+        const Vec3d x0(B.x[c.other[0]]), x1(B.x[c.other[1]]), x2(B.x[c.other[2]]);
+        const auto w = nearest_on_triangle(to_float(p), B.x[c.other[0]], B.x[c.other[1]], B.x[c.other[2]]);
+        const Vec3d q = x0 * double(w[0]) + x1 * double(w[1]) + x2 * double(w[2]);
+        Vec3d n = p - q;
+        const double dist = length(n);
+        if (dist > 1e-9) n = n / dist;
+        else n = normalize(cross(x1 - x0, x2 - x0));
+        c.n = n;
+        c.separation = dist - c.radius - kRigidThickness;
+        for (int j = 0; j < 3; ++j) c.weight[j] = w[std::size_t(j)];
+        Vec3d v_rel = m.v + cross(m.omega, p - n * c.radius - m.x);
+        for (int j = 0; j < 3; ++j) v_rel -= Vec3d(B.v[c.other[j]]) * double(c.weight[j]);
+        c.bounce = -dot(v_rel, n);
+        const bool same = k > 0 && rigid_pairs_[k - 1].rigid == pair.rigid && rigid_pairs_[k - 1].feature == pair.feature &&
+                          rigid_pairs_[k - 1].soft == pair.soft;
+        if (!same || rigid_active_.size() == rigid_group) {
+            if (!same) rigid_group = rigid_active_.size();
+            rigid_active_.push_back(c);
+            continue;
+        }
+        RigidActive& best = rigid_active_[rigid_group];
+        if (dot(c.n, best.n) >= 0.0) {
+            if (c.separation < best.separation) best = c;
+        } else if (rigid_active_.size() == rigid_group + 1) {
+            rigid_active_.push_back(c);
+        } else if (c.separation < rigid_active_[rigid_group + 1].separation) {
+            rigid_active_[rigid_group + 1] = c;
+        }
+    }
     // One contact per particle and surface: its nearest triangle (the pairs of one particle and
     // body come one after another), and the nearest on the other side of the particle if there
     // is one (a particle between two layers of a folded sheet). The other triangles within
@@ -319,9 +424,10 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies) {
     }
 }
 
-void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, float h) {
+void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
+                         const Params& world, float h) {
     touching_.clear();
-    if (active_.empty()) return;
+    if (active_.empty() && rigid_active_.empty()) return;
     const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
     // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
     const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
@@ -371,8 +477,92 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, flo
         c.c.normal_impulse = 0.0;
         c.friction = {};
     }
+    // Rigid points: each body's motion after its free step (and its own contacts), the arms
+    // and targets as for particles, with the body's restitution and friction where it sets them.
+    motions_.resize(rigid.size());
+    dP_.assign(rigid.size(), {});
+    dL_.assign(rigid.size(), {});
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        if (!rigid_active_.empty()) motions_[r] = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
+    }
+    const auto rigid_relative = [&](const RigidActive& c) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        const Vec3d v = m.v + dP_[c.rigid] * body.inv_mass, w = m.omega + m.J_inv * dL_[c.rigid];
+        Vec3d u = v + cross(w, c.r);
+        for (int j = 0; j < 3; ++j) u -= Vec3d(bodies[c.soft].v[c.other[j]]) * double(c.weight[j]);
+        return u;
+    };
+    // Eq. 38's denominator along a unit direction u: the rigid side's 1/m + u . ((J^-1 (r x u)) x r),
+    // the triangle's sum w_i^2 / m_i.
+    const auto rigid_denominator = [&](const RigidActive& c, const Vec3d& u) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        double k = body.inv_mass + dot(u, cross(m.J_inv * cross(c.r, u), c.r));
+        for (int j = 0; j < 3; ++j) k += double(c.weight[j] * c.weight[j] * bodies[c.soft].inv_mass[c.other[j]]);
+        return k;
+    };
+    const auto rigid_apply = [&](const RigidActive& c, const Vec3d& J) {
+        if (!rigid[c.rigid].fixed) {
+            dP_[c.rigid] += J;
+            dL_[c.rigid] += cross(c.r, J);  // Eq. 37
+        }
+        SoftBody& B = bodies[c.soft];
+        for (int j = 0; j < 3; ++j) {
+            const std::uint32_t i = c.other[j];
+            const float im = B.inv_mass[i];
+            if (c.weight[j] == 0.0f || im == 0.0f) continue;
+            const Vec3 dv = to_float(J * -double(c.weight[j] * im));
+            B.v.add(i, dv);
+            dv_[c.soft].add(i, dv);
+            if (!marked_[c.soft][i]) {
+                marked_[c.soft][i] = 1;
+                touched_[c.soft].push_back(i);
+            }
+        }
+    };
+    for (RigidActive& c : rigid_active_) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        const SoftBody& B = bodies[c.soft];
+        const Vec3d p = m.x + m.R * c.local;
+        c.r = p - c.n * c.radius - m.x;
+        Vec3d q;
+        for (int j = 0; j < 3; ++j) q += Vec3d(B.x[c.other[j]]) * double(c.weight[j]);
+        const double gap_free = dot(p - q, c.n) - c.radius - kRigidThickness;
+        const double v_n = dot(rigid_relative(c), c.n);
+        c.target = std::min(v_n - gap_free / double(h), double(kPushSpeed));
+        const double e_r = std::max(double(e), double(body.restitution.value_or(e)));
+        if (gap_free < 0.0 && c.bounce > double(bounce_speed)) c.target = std::max(c.target, e_r * c.bounce);
+        c.lambda = 0.0;
+        c.friction = {};
+    }
     for (int pass = 0; pass < kPasses; ++pass) {
         float largest = 0.0f;  // the largest velocity change of the pass
+        for (RigidActive& c : rigid_active_) {
+            const RigidBody& body = rigid[c.rigid];
+            const double k_n = rigid_denominator(c, c.n);
+            if (!(k_n > 0.0)) continue;
+            const double v_n = dot(rigid_relative(c), c.n);
+            const double lambda = std::max(0.0, c.lambda + (c.target - v_n) / k_n);
+            const double dl = lambda - c.lambda;
+            c.lambda = lambda;
+            if (dl != 0.0) rigid_apply(c, c.n * dl);
+            // Friction as for particles, along the slide, with its own denominator.
+            const double ms = body.friction ? double(*body.friction) : double(mu_s);
+            const double md = body.friction ? double(*body.friction) : double(mu_d);
+            const Vec3d v = rigid_relative(c);
+            const Vec3d v_t = v - c.n * dot(v, c.n);
+            const double slide = length(v_t);
+            Vec3d total = c.friction;
+            if (slide > 0.0) total -= v_t * (1.0 / rigid_denominator(c, v_t / slide));
+            const double size = length(total);
+            if (size > ms * lambda) total = size > 0.0 ? total * (md * lambda / size) : Vec3d{};
+            const Vec3d df = total - c.friction;
+            c.friction = total;
+            if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
+            largest = std::max(largest, float((std::abs(dl) + length(df)) * k_n));
+        }
         for (Active& c : active_) {
             const Vec3 n = to_float(c.c.normal);
             // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
@@ -395,6 +585,26 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, const Params& world, flo
         }
         // Converged: no contact's velocity moved by more than kSettled in the whole pass.
         if (largest < kSettled) break;
+    }
+    // A rigid body's momenta take the impulses; its centre and turn follow by h times the
+    // velocity and spin they changed (dv = dP / m, dw = J_world^-1 dL).
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        if (rigid[r].fixed || (dP_[r] == Vec3d{} && dL_[r] == Vec3d{})) continue;
+        double* y = &state[r * rigid::kStateSize];
+        const Vec3d dv = dP_[r] * rigid[r].inv_mass, dw = motions_[r].J_inv * dL_[r];
+        for (int k = 0; k < 3; ++k) {
+            y[rigid::P + k] += dP_[r][k];
+            y[rigid::L + k] += dL_[r][k];
+            y[rigid::X + k] += double(h) * dv[k];
+        }
+        const double angle = length(dw) * double(h);
+        if (angle > 0.0) {
+            const Quat q = Quat::from_axis_angle(dw / length(dw), angle) * Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            y[rigid::Q] = q.w;
+            y[rigid::Q + 1] = q.x;
+            y[rigid::Q + 2] = q.y;
+            y[rigid::Q + 3] = q.z;
+        }
     }
     // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
     const bool verlet = world.integrator == Integrator::Verlet;

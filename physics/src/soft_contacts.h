@@ -31,14 +31,25 @@
 // gap of zero at the step's end), so nothing jitters and nothing creeps in.
 // What it does not catch: two edges crossing with no particle near the other's surface
 // (coarse meshes, edge on edge). Meshes with particles a few thicknesses apart do not show it.
+//
+// Rigid shapes against a soft body's triangles, the same way: a sphere's centre (a point with
+// the sphere's radius) and a hull's vertices against the triangles, found with the soft pairs,
+// solved with them, Eq. 38 with the rigid body's full denominator (its J_world^-1 and arm r);
+// the impulse changes its P and L, and its centre and turn follow by h times what they changed.
+// So a ball smaller than the gaps between a coarse sheet's particles lands on the sheet, and a
+// box's edge holds a soft face that overhangs it. (A soft particle against a rigid shape stays
+// particle_contacts.h's, solved by contact_solver.h.)
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include <span>
+
 #include "bvh.h"
 #include "physics/contact.h"
 #include "physics/params.h"
+#include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 
 namespace softbody {
@@ -54,12 +65,16 @@ public:
     // The pairs within reach over the tick of dt, found where the bodies are as it begins
     // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
     // particles may go in this one). Returns whether there are any.
-    bool find(const std::vector<SoftBody>& bodies, const Params& world, double dt);
+    // `rigid`, `state`: the rigid bodies and Listing 10's flat state as the tick begins.
+    bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+              const Params& world, double dt);
     bool empty() const { return pairs_.empty(); }
     // Before the integrator moves the particles: each pair's nearest point and normal.
-    void begin_substep(const std::vector<SoftBody>& bodies);
-    // After the integrator's free step of h (and the rigid contacts): the impulses.
-    void solve(std::vector<SoftBody>& bodies, const Params& world, float h);
+    void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state);
+    // After the integrator's free step of h (and the rigid contacts): the impulses, on the
+    // particles and on the rigid bodies' state.
+    void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const Params& world,
+               float h);
     // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
     const std::vector<SoftContact>& contacts() const { return touching_; }
 
@@ -86,6 +101,30 @@ private:
     };
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
     bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
+
+    // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
+    struct RigidPair {
+        std::uint32_t rigid, feature, soft, tri;  // feature: the hull vertex (0 for a sphere)
+    };
+    struct RigidActive {
+        std::uint32_t rigid = 0, soft = 0;
+        Vec3d local;                 // the point in body axes, from the centre of mass
+        double radius = 0.0;         // a sphere's; 0 for a vertex
+        std::uint32_t other[3] = {0, 0, 0};
+        float weight[3] = {0.0f, 0.0f, 0.0f};
+        Vec3d n;                     // out of the triangle toward the rigid body
+        double target = 0.0, bounce = 0.0, lambda = 0.0;
+        Vec3d friction;
+        Vec3d r;                     // arm from the centre of mass to the contact point, now
+        double separation = 0.0;
+    };
+    void find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                    const Params& world, double dt);
+    std::vector<RigidPair> rigid_pairs_;
+    std::vector<RigidActive> rigid_active_;
+    std::vector<Vec3d> dP_, dL_;     // per rigid body: what this substep's impulses added
+    std::vector<Box3f> rigid_box_;   // per rigid body, as the tick began, grown by its reach
+    std::vector<RigidMotion> motions_;  // per rigid body, after its free step (solve)
 
     std::vector<Surface> surfaces_;
     std::vector<Pair> pairs_;

@@ -384,7 +384,7 @@ void World::step(float h) {
     if (contacts) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
-    if (soft_touching_) soft_contacts_->begin_substep(soft_);
+    if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_);
     switch (params_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
@@ -425,7 +425,7 @@ void World::step(float h) {
     // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
     if (contacts) solver_->substep(contact_world());
-    if (soft_touching_) soft_contacts_->solve(soft_, params_, h);
+    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, params_, h);
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
@@ -542,7 +542,7 @@ void World::tick() {
     tick_substeps_ = 0;
     // Soft bodies within reach of one another (or of themselves): found before the last
     // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
-    soft_touching_ = soft_contacts_->find(soft_, params_, params_.dt);
+    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt);
     if (soft_touching_) substeps = std::max(substeps, kContactSubsteps);
     int intervals = 1;
     for (int i = 0; i < intervals; ++i) {

@@ -252,9 +252,35 @@ TEST(SoftContact, PointCloudsMeetParticleAgainstParticle) {
     EXPECT_GT(mean_velocity(world, 1).x, 0.0);
 }
 
+// The pebble on the net: a 8 cm ball onto a sheet whose particles are 0.5 m apart. Only the
+// sheet's triangles can catch it (it fits between any four particles): caught, it never gets
+// near the ground, and comes to rest on the sheet, a radius (and the 2 mm contact gap) above it.
+TEST(SoftContact, PebbleIsCaughtByTheNetAndRests) {
+    World world = world_of_file("pebble_on_net.json");
+    ASSERT_EQ(world.rigid_body_count(), 1u);
+    double lowest = 1e9;
+    for (int t = 0; t < 650; ++t) {
+        world.tick();
+        lowest = std::min(lowest, world.rigid_motion(0).x.z);
+    }
+    EXPECT_GT(lowest, 0.5);  // the sheet hangs about a metre up; the ground is at 0
+    const RigidMotion m = world.rigid_motion(0);
+    EXPECT_LT(length(m.v), 0.01);
+    // On the sheet: over its lowest particle by about a radius, and under the pinned corners.
+    const SoftBody& net = world.soft_body(0);
+    float sheet_low = 1e9f;
+    for (std::size_t i = 0; i < net.particle_count(); ++i) sheet_low = std::min(sheet_low, net.x.z[i]);
+    EXPECT_GT(m.x.z, double(sheet_low));
+    EXPECT_LT(m.x.z, double(sheet_low) + 0.15);
+    EXPECT_LT(m.x.z, 1.5);
+    const Vec3d rest = m.x;
+    world.run(100);
+    EXPECT_LT(length(world.rigid_motion(0).x - rest), 2e-3);
+}
+
 // The same state at 1, 2 and 3 threads for each scene of bodies that meet.
 TEST(SoftContact, SameHashAtAnyThreadCount) {
-    for (const char* name : {"soft_balls.json", "soft_stack.json", "fold.json"}) {
+    for (const char* name : {"soft_balls.json", "soft_stack.json", "fold.json", "pebble_on_net.json"}) {
         std::uint64_t hashes[3] = {};
         for (int threads = 1; threads <= 3; ++threads) {
             World world = world_of_file(name, threads);
