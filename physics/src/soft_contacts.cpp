@@ -16,7 +16,7 @@ constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity m
 // m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
 // triangles between them should not stand off it by more than that.
-constexpr double kRigidThickness = 0.002;
+constexpr double kRigidThickness = 0.001;
 
 // The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
 // region p falls in (a corner, an edge, or the face), each tested with dot products only.
@@ -271,17 +271,22 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
                 const std::uint32_t* v = &s.triangles[3 * t];
                 if (body.fixed && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
                 const double reach = margin + double(std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]})) + kRigidThickness;
-                const auto near = [&](const Vec3d& local, double radius) {
+                const Vec3 face = cross(B.x[v[1]] - B.x[v[0]], B.x[v[2]] - B.x[v[0]]);
+                // Which side of the triangle the point is on (on it, within rounding: the side
+                // the triangle faces, outward for a closed body wound as files wind them).
+                const auto add = [&](const Vec3d& local, double radius, std::uint32_t feature) {
                     const Vec3 p = to_float(m.x + m.R * local);
-                    return double(distance_to_triangle(p, B.x[v[0]], B.x[v[1]], B.x[v[2]])) - radius <= reach;
+                    const auto w = nearest_on_triangle(p, B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+                    const Vec3 away = p - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
+                    if (double(length(away)) - radius > reach) return;
+                    const float side = dot(away, face) < -1e-6f * length(face) ? -1.0f : 1.0f;
+                    rigid_pairs_.push_back({std::uint32_t(r), feature, std::uint32_t(b), t, side});
                 };
                 if (body.shape == ShapeKind::Sphere) {
-                    if (near({}, body.radius)) rigid_pairs_.push_back({std::uint32_t(r), 0, std::uint32_t(b), t});
+                    add({}, body.radius, 0);
                     return;
                 }
-                for (std::uint32_t k = 0; k < body.hull->vertices.size(); ++k) {
-                    if (near(body.hull->vertices[k], 0.0)) rigid_pairs_.push_back({std::uint32_t(r), k, std::uint32_t(b), t});
-                }
+                for (std::uint32_t k = 0; k < body.hull->vertices.size(); ++k) add(body.hull->vertices[k], 0.0, k);
             });
         }
         // One point's triangles together (begin_substep keeps its nearest), in a fixed order.
@@ -362,12 +367,21 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
         const Vec3d x0(B.x[c.other[0]]), x1(B.x[c.other[1]]), x2(B.x[c.other[2]]);
         const auto w = nearest_on_triangle(to_float(p), B.x[c.other[0]], B.x[c.other[1]], B.x[c.other[2]]);
         const Vec3d q = x0 * double(w[0]) + x1 * double(w[1]) + x2 * double(w[2]);
-        Vec3d n = p - q;
-        const double dist = length(n);
-        if (dist > 1e-9) n = n / dist;
-        else n = normalize(cross(x1 - x0, x2 - x0));
+        // Over the face: its normal, on the point's side as the tick began (a point resting on
+        // the face, or pushed a little through it, is still pushed back out the way it came).
+        // Beyond an edge or a corner: from the nearest point to the point (a rounded edge).
+        Vec3d n = normalize(cross(x1 - x0, x2 - x0)) * double(pair.side);
+        double gap = dot(p - q, n);
+        const double dist = length(p - q);
+        // (More beside the edge than over the face: a point near the edge between two faces
+        // would otherwise be pushed sideways by its small offset across the edge.)
+        const double beside = length(p - q - n * gap);
+        if ((w[0] == 0.0f || w[1] == 0.0f || w[2] == 0.0f) && beside > std::abs(gap) && dist > 1e-4) {
+            n = (p - q) / dist;
+            gap = dist;
+        }
         c.n = n;
-        c.separation = dist - c.radius - kRigidThickness;
+        c.separation = gap - c.radius - kRigidThickness;
         for (int j = 0; j < 3; ++j) c.weight[j] = w[std::size_t(j)];
         Vec3d v_rel = m.v + cross(m.omega, p - n * c.radius - m.x);
         for (int j = 0; j < 3; ++j) v_rel -= Vec3d(B.v[c.other[j]]) * double(c.weight[j]);

@@ -105,6 +105,7 @@ private:
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
     struct RigidPair {
         std::uint32_t rigid, feature, soft, tri;  // feature: the hull vertex (0 for a sphere)
+        float side;  // +1: the point was on the side the triangle faces (its winding) as the tick began, -1 behind
     };
     struct RigidActive {
         std::uint32_t rigid = 0, soft = 0;
