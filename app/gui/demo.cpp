@@ -18,8 +18,6 @@ namespace {
 
 constexpr std::size_t kEnergySamples = 600;  // about ten seconds at 60 frames a second
 
-glm::vec3 to_glm(const Vec3& v) { return {v.x, v.y, v.z}; }
-
 // The ray under pixel (x, y): origin on the near plane, unit direction.
 void mouse_ray(const render::Camera& camera, float x, float y, float width, float height, glm::vec3& origin,
                glm::vec3& direction) {
