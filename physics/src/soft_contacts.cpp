@@ -637,6 +637,7 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         if (c.c.normal_impulse <= 0.0) continue;
         SoftContact out = c.c;
         out.tangent_impulse = length(c.friction);
+        out.impulse = c.c.normal * c.c.normal_impulse + Vec3d(c.friction);
         touching_.push_back(out);
     }
 }

@@ -124,11 +124,11 @@ WorldSnapshot World::snapshot() const {
     return out;
 }
 
-void World::restore(const WorldSnapshot& s) {
-    if (s.soft.size() != soft_.size() || s.rigid.size() != y_.size()) {
-        throw std::invalid_argument("World::restore: a snapshot of another world");
-    }
-    for (std::size_t b = 0; b < soft_.size(); ++b) {
+void World::restore(const WorldSnapshot& s, bool more_bodies) {
+    const bool fits = more_bodies ? s.soft.size() <= soft_.size() && s.rigid.size() <= y_.size()
+                                  : s.soft.size() == soft_.size() && s.rigid.size() == y_.size();
+    if (!fits || s.rigid.size() != s.rigid_tick_prev.size()) throw std::invalid_argument("World::restore: a snapshot of another world");
+    for (std::size_t b = 0; b < s.soft.size(); ++b) {
         SoftBody& body = soft_[b];
         const WorldSnapshot::Soft& from = s.soft[b];
         if (from.x.size() != body.particle_count()) throw std::invalid_argument("World::restore: a snapshot of another body");
@@ -139,9 +139,13 @@ void World::restore(const WorldSnapshot& s) {
         body.inv_mass = from.inv_mass;
         body.verlet_h = from.verlet_h;
     }
-    y_ = s.rigid;
-    y_tick_prev_ = s.rigid_tick_prev;
-    contacts_ = s.contacts;
+    std::copy(s.rigid.begin(), s.rigid.end(), y_.begin());
+    std::copy(s.rigid_tick_prev.begin(), s.rigid_tick_prev.end(), y_tick_prev_.begin());
+    if (more_bodies) {
+        contacts_.clear();  // the next tick finds them with the new bodies
+    } else {
+        contacts_ = s.contacts;
+    }
     previous_contacts_.clear();
     ticks_ = s.ticks;
     status_ = s.status;
@@ -232,14 +236,20 @@ void World::set_threads(int threads) {
     for (SoftBody& body : soft_) body.kernel = std::make_unique<PairForceKernel>(*pool_);
 }
 
+void World::set_body_params(std::size_t b, const Params& params) {
+    if (b >= soft_.size()) throw InputError("there is no soft body number " + std::to_string(b));
+    validate(params);
+    check_pins(params, soft_[b].mesh);
+    if (!(params == soft_[b].params)) energy_baseline_stale_ = true;
+    soft_[b].params = params;
+    apply_body_keys(soft_[b]);
+    update_substeps();
+}
+
 void World::set_params(const Params& params) {
     validate(params);
     // The flat keys' soft body, when there is one, takes the body keys.
-    if (!soft_.empty() && soft_.front().name == "body") {
-        check_pins(params, soft_.front().mesh);
-        soft_.front().params = params;
-        apply_body_keys(soft_.front());
-    }
+    if (!soft_.empty() && soft_.front().name == "body") set_body_params(0, params);
     // Switching to Verlet restarts it from the current x and v (x_{-1} = x_0 - v_0 h): its step
     // was last kept up to date when Verlet last ran, and is stale by now.
     if (params.integrator != params_.integrator) {

@@ -49,6 +49,7 @@ struct SoftContact {
     double distance = 0.0;                   // the contact distance: the surface's thickness plus the particle's radius, m
     double normal_impulse = 0.0;             // lambda on the particle over the last substep, N s
     double tangent_impulse = 0.0;            // friction's size over the last substep, N s
+    Vec3d impulse;                           // the whole impulse on the particle over the last substep, N s
 };
 
 // The whole impulse a contact's solver applied on side a, normal and tangential (friction)

@@ -150,12 +150,17 @@ public:
 
     // Time travel: the state as it is now, and back to a state taken earlier from this world.
     WorldSnapshot snapshot() const;
-    void restore(const WorldSnapshot& snapshot);
+    // With `more_bodies`, the snapshot may be of this world before bodies were added at the end
+    // of its lists (the app's Add menu): those it holds go on from it, the new ones start as built.
+    void restore(const WorldSnapshot& snapshot, bool more_bodies = false);
 
     // The world's keys, and the first soft body's. Keys marked live in param_table() apply
     // from the next tick; the rest (mesh, scale, init_height, initial_velocity, pinned) apply
     // at the next reset(). Throws InputError.
     void set_params(const Params& params);
+    // One soft body's keys (ParamScope::Body; its world keys are not read), as set_params says
+    // for the first: the one path a body's keys take, whichever body it is. Throws InputError.
+    void set_body_params(std::size_t body, const Params& params);
     const Params& params() const { return params_; }
 
     void set_threads(int threads);
