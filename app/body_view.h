@@ -14,8 +14,24 @@ namespace softbody::app {
 
 inline render::Vec3Span span_of(const Vec3Array& a) { return {a.x.data(), a.y.data(), a.z.data(), a.size()}; }
 
+// Soft bodies' colours after the first, sRGB: the first is the appearance's orange (as the demo
+// has always drawn its one body), the others distinct from it, from one another and from the
+// rigid bodies' palette below.
+inline glm::vec3 soft_body_color(std::size_t i) {
+    static constexpr std::array<glm::vec3, 6> kPalette{{{0.46f, 0.72f, 0.30f},
+                                                        {0.30f, 0.56f, 0.90f},
+                                                        {0.88f, 0.36f, 0.52f},
+                                                        {0.92f, 0.84f, 0.36f},
+                                                        {0.50f, 0.36f, 0.78f},
+                                                        {0.26f, 0.74f, 0.66f}}};
+    return kPalette[(i - 1) % kPalette.size()];
+}
+
+inline glm::vec3 to_glm(const Vec3& v) { return {v.x, v.y, v.z}; }
+
 // `alpha` in [0, 1]: how far from the previous tick to the latest one to draw the body.
-inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f) {
+// `index`: the body's place among the soft bodies, for its colour when it sets none.
+inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f, std::size_t index = 0) {
     render::BodyView view;
     view.mesh = &body.mesh;
     if (body.reduced) {
@@ -31,6 +47,8 @@ inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f)
     if (body.force.size() == body.particle_count()) view.forces = span_of(body.force);
     view.rest_positions = span_of(body.rest);
     view.inverse_masses = {body.inv_mass.data(), body.inv_mass.size()};
+    if (body.params.color) view.color = to_glm(*body.params.color);
+    else if (index > 0) view.color = soft_body_color(index);
     return view;
 }
 
@@ -62,7 +80,7 @@ inline render::RigidBodyView rigid_body_view(const World& world, std::size_t i, 
     view.previous_orientation = {float(before[rigid::Q]), float(before[rigid::Q + 1]), float(before[rigid::Q + 2]),
                                  float(before[rigid::Q + 3])};
     view.alpha = alpha;
-    view.color = rigid_body_color(i);
+    view.color = body.color ? to_glm(*body.color) : rigid_body_color(i);
     view.radius = float(body.bounding_radius);
     view.mass = float(body.mass);
     view.fixed = body.fixed;
@@ -75,7 +93,7 @@ inline render::RigidBodyView rigid_body_view(const World& world, std::size_t i, 
 // Every body of the world, its links and its last contacts, into `frame`.
 inline void world_view(const World& world, float alpha, render::Frame& frame) {
     frame.soft_bodies.clear();
-    for (std::size_t b = 0; b < world.soft_body_count(); ++b) frame.soft_bodies.push_back(soft_body_view(world.soft_body(b), alpha));
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) frame.soft_bodies.push_back(soft_body_view(world.soft_body(b), alpha, b));
     frame.rigid_bodies.clear();
     for (std::size_t b = 0; b < world.rigid_body_count(); ++b) frame.rigid_bodies.push_back(rigid_body_view(world, b, alpha));
     frame.links.clear();

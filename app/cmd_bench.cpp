@@ -256,10 +256,10 @@ enum class Kernel { Fast, Reference, Baseline };
 // One tick-timing row of a scene (a file, or a generated name such as cloud:2500 or pile:100):
 // the World with the fast or the reference kernel, or the baseline on the scene's soft body, in
 // a child. `settle` ticks run first, untimed (a pile's second of fall: the contacts busy).
-Measurement measure(Kernel kernel, const std::string& scene_name, int threads, double budget, int settle = 0) {
+Measurement measure_scene(Kernel kernel, const std::function<Scene()>& make, int threads, double budget, int settle = 0) {
     return in_child<Measurement>([&]() {
         Measurement m;
-        const Scene scene = load_scene(scene_name);
+        const Scene scene = make();
         World world(make_world_def(scene), WorldOptions{threads, kernel == Kernel::Reference});
         const double n = double(world.soft_body_count() ? world.particle_count() : 0);
         m.substeps = world.substeps_in_use();
@@ -292,7 +292,13 @@ Measurement measure(Kernel kernel, const std::string& scene_name, int threads, d
         time_ticks(
             m, [&] { world.tick(); }, [&] { return world.status() == Status::Ok; }, budget, kernel == Kernel::Fast ? 3 : 1,
             20000, kernel == Kernel::Fast && settle == 0);
-        m.pairs_per_tick = m.substeps * n * (n - 1.0) / 2.0;
+        // Every soft body's pairs (a scene of several: each its own N(N-1)/2).
+        double pairs = 0.0;
+        for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+            const double nb = double(world.soft_body(b).particle_count());
+            pairs += nb * (nb - 1.0) / 2.0;
+        }
+        m.pairs_per_tick = m.substeps * pairs;
         m.evals_per_tick = m.pairs_per_tick;
         if (world.status() != Status::Ok) {
             m.diverged = 1;
@@ -302,7 +308,32 @@ Measurement measure(Kernel kernel, const std::string& scene_name, int threads, d
     });
 }
 
+Measurement measure(Kernel kernel, const std::string& scene_name, int threads, double budget, int settle = 0) {
+    return measure_scene(kernel, [&] { return load_scene(scene_name); }, threads, budget, settle);
+}
+
 std::string cloud(std::size_t n) { return "cloud:" + std::to_string(n); }
+
+// Two soft cubes of cube:22 (2,906 particles each, 0.6 m a side) on the ground: one resting on
+// the other (a whole face in contact: the most pairs a tick finds), or side by side, apart
+// (the broad phase finds nothing after the bodies' boxes). What soft contacts cost per tick is
+// the difference.
+Scene two_cubes(bool touching) {
+    Scene scene;
+    for (int k = 0; k < 2; ++k) {
+        SoftBodyScene body;
+        body.name = k == 0 ? "lower" : "upper";
+        body.params.mesh = "cube:22";
+        body.params.scale = 0.6f;
+        body.params.max_particles = 0;
+        body.params.stiffness = 2.0f;  // soft enough to sag onto the lower cube; few substeps (7)
+        body.params.damping = 0.005f;
+        body.params.particle_mass = 0.05f;
+        body.params.position = touching ? Vec3{0.0f, 0.0f, 0.3f + 0.61f * float(k)} : Vec3{-0.5f + 1.0f * float(k), 0.0f, 0.3f};
+        scene.soft_bodies.push_back(body);
+    }
+    return scene;
+}
 
 // The pair kernel alone, one tile variant: compute() on a cloud displaced from rest and moving,
 // no tick around it. calls/ticks are force evaluations here.
@@ -1024,6 +1055,13 @@ int bench_command(int argc, char** argv) {
         for (const char* name : {"pile:100", "pile:100+cloud:1000"}) {
             const std::size_t n = std::string_view(name).find("cloud") != std::string_view::npos ? 1000 : 0;
             for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, name, t, budget, 50)});
+        }
+        // Soft contacts: two 2,906-particle cubes, one on the other, against the two apart.
+        for (bool touching : {false, true}) {
+            const std::string name = touching ? "2 cubes touching" : "2 cubes apart";
+            for (int t : thread_counts) {
+                add({name, 5812, fast_name, measure_scene(Kernel::Fast, [&] { return two_cubes(touching); }, t, budget, 25)});
+            }
         }
     }
 

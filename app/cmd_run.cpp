@@ -83,6 +83,14 @@ void run_script_command(Demo& demo, const ScriptCommand& command) {
         demo.step_back();
     } else if (command.verb == "lesson") {
         open_lesson(demo, std::size_t(std::stoul(args[0])));
+    } else if (command.verb == "add") {
+        const std::string& what = args[0];
+        demo.add_body(what == "soft_ball"   ? Demo::AddKind::SoftBall
+                      : what == "soft_cube" ? Demo::AddKind::SoftCube
+                      : what == "rigid_box" ? Demo::AddKind::RigidBox
+                      : what == "rigid_ball" ? Demo::AddKind::RigidBall
+                                             : Demo::AddKind::MeshFile,
+                      args.size() > 1 ? args[1] : std::string());
     } else if (command.verb == "pause") {
         demo.paused = true;
     } else if (command.verb == "play") {

@@ -18,8 +18,6 @@ namespace {
 
 constexpr std::size_t kEnergySamples = 600;  // about ten seconds at 60 frames a second
 
-glm::vec3 to_glm(const Vec3& v) { return {v.x, v.y, v.z}; }
-
 // The ray under pixel (x, y): origin on the near plane, unit direction.
 void mouse_ray(const render::Camera& camera, float x, float y, float width, float height, glm::vec3& origin,
                glm::vec3& direction) {
@@ -262,6 +260,89 @@ void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
     }
 }
 
+void Demo::edit_body(std::size_t body, const Params& params) {
+    if (body >= world_->soft_body_count()) return;
+    // The flat keys' body: its keys travel with the world's (a preset saves them flat).
+    if (body == 0 && world_->soft_body(0).name == "body") {
+        Params all = world_->params();
+        for (const ParamInfo& info : param_table()) {
+            if (info.scope == ParamScope::Body) set_param(all, info.key, param_text(params, info.key));
+        }
+        edit(all);
+        return;
+    }
+    try {
+        if (!(params == world_->soft_body(body).params)) changed();
+        world_->set_body_params(body, params);
+        for (ComparedWorld& c : compared_) c.world->set_body_params(body, params);
+        // The scene keeps them: a reset builds the body from them, a preset saves them.
+        const std::size_t k = body - (scene_.params.mesh.empty() ? 0 : 1);
+        if (k < scene_.soft_bodies.size()) scene_.soft_bodies[k].params = params;
+    } catch (const std::exception& e) {
+        error_ = e.what();
+    }
+}
+
+bool Demo::add_body(AddKind kind, const std::string& mesh) {
+    Scene scene = this->scene();
+    const std::vector<std::string> names = body_names(scene);
+    const auto unique = [&](const std::string& stem) {
+        for (int n = 1;; ++n) {
+            const std::string name = stem + std::to_string(n);
+            if (std::find(names.begin(), names.end(), name) == names.end()) return name;
+        }
+    };
+    // Above the scene where the camera looks: over its target, clear of the highest body.
+    const WorldBounds bounds = world_bounds(*world_);
+    const float top = world_->soft_body_count() + world_->rigid_body_count() > 0 ? bounds.centre.z + bounds.radius : 0.0f;
+    const float size = 0.5f;
+    const Vec3 at{camera.target.x, camera.target.y, std::max(top, params().ground ? params().ground_height : 0.0f) + size + 0.3f};
+    if (kind == AddKind::RigidBox || kind == AddKind::RigidBall) {
+        RigidBodyDef def;
+        def.name = unique(kind == AddKind::RigidBox ? "box" : "ball");
+        def.shape = kind == AddKind::RigidBox ? ShapeKind::Box : ShapeKind::Sphere;
+        if (def.shape == ShapeKind::Box) def.size = Vec3d{size, size, size};
+        else def.radius = 0.5 * size;
+        def.density = 150.0;
+        def.position = Vec3d(at);
+        scene.rigid_bodies.push_back(def);
+    } else {
+        SoftBodyScene body;
+        body.name = unique(kind == AddKind::SoftBall ? "jelly_ball" : kind == AddKind::SoftCube ? "jelly_cube" : "mesh");
+        body.params.mesh = kind == AddKind::SoftBall ? "ball:2" : kind == AddKind::SoftCube ? "cube:4" : mesh;
+        if (kind == AddKind::MeshFile) fit_brought_mesh(body.params);  // sized and stood up, as a dropped file is
+        else {
+            body.params.scale = size;
+            body.params.up_axis = "z";
+        }
+        body.params.particle_mass = 0.05f;
+        body.params.stiffness = 60.0f;
+        body.params.damping = 1.5f;
+        body.params.position = at;
+        scene.soft_bodies.push_back(body);
+    }
+    // The world made again with it, the bodies it had going on from where they are.
+    try {
+        auto world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+        world->restore(world_->snapshot(), true);
+        world->set_params(world_->params());
+        world_ = std::move(world);
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        return false;
+    }
+    scene_ = scene;
+    built_rigid_bodies_ = scene.rigid_bodies;
+    compared_.clear();  // the copies had the old scene
+    energy_.clear();
+    last_collision_.reset();
+    stop_inspecting();
+    sample_energy();
+    history_.start(*world_);
+    error_.clear();
+    return true;
+}
+
 void Demo::set_key(const std::string& key, const std::string& value) {
     try {
         const auto dot = key.find('.');
@@ -488,6 +569,7 @@ void Demo::inspect(const Pick& pick) {
         inspected_rigid_ = pick.body;
     } else {
         inspect_particle(pick.body, pick.particle);
+        selected_body_ = pick.body;
     }
 }
 
@@ -629,9 +711,9 @@ std::optional<float> ray_mesh(const Mesh& mesh, const glm::vec3& origin, const g
 std::optional<Pick> Demo::pick(float x, float y, float width, float height, float radius) const {
     const glm::mat4 clip = camera.projection(width / height) * camera.view();
     std::optional<Pick> best;
-    if (world_->soft_body_count() > 0) {
-        const auto& p = world_->positions();
-        for (std::size_t i = 0; i < world_->particle_count(); ++i) {
+    for (std::size_t b = 0; b < world_->soft_body_count(); ++b) {
+        const auto& p = world_->soft_body(b).x;
+        for (std::size_t i = 0; i < p.size(); ++i) {
             const glm::vec4 c = clip * glm::vec4(to_glm(p[i]), 1.0f);
             if (c.w <= 0.0f) continue;
             const float sx = (c.x / c.w * 0.5f + 0.5f) * width, sy = (0.5f - c.y / c.w * 0.5f) * height;
@@ -639,7 +721,7 @@ std::optional<Pick> Demo::pick(float x, float y, float width, float height, floa
             if (d2 > radius * radius) continue;
             // Within reach: the nearest to the eye wins (it is the one drawn in front).
             if (!best || c.w < best->depth) {
-                best = Pick{false, 0, static_cast<std::uint32_t>(i), {}, c.w};
+                best = Pick{false, static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(i), {}, c.w};
             }
         }
     }
@@ -676,8 +758,10 @@ void Demo::begin_grab(const Pick& pick, float x, float y, float width, float hei
         grab.body = pick.body;
         grab.point = pick.point;
     } else {
-        at = to_glm(world_->positions()[pick.particle]);
+        at = to_glm(world_->soft_body(pick.body).x[pick.particle]);
+        grab.body = pick.body;
         grab.particle = pick.particle;
+        selected_body_ = pick.body;  // the body grabbed is the body the Parameters panel edits
     }
     grab_depth_ = glm::dot(at - camera.eye(), camera.forward());
     grab.target = {at.x, at.y, at.z};

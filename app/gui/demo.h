@@ -77,6 +77,19 @@ public:
     // Parameter edits from the UI: live keys apply now, the others at reset (see params.h).
     void edit(const Params& params);
     const Params& params() const { return world_->params(); }
+    // The soft body the Parameters panel edits (clicking a soft body selects it), and its
+    // keys: live ones apply now, the rest at reset, through the body's own path
+    // (World::set_body_params); the flat body's go with the world's keys (edit).
+    std::size_t selected_body() const { return selected_body_ < world_->soft_body_count() ? selected_body_ : 0; }
+    void select_body(std::size_t body) { selected_body_ = body; }
+    const Params& body_params(std::size_t body) const { return world_->soft_body(body).params; }
+    void edit_body(std::size_t body, const Params& params);
+
+    // The Add menu: a body dropped above the scene where the camera looks, the world going on
+    // from where it is (the others keep their motion). False and error() when it cannot be made.
+    enum class AddKind { SoftBall, SoftCube, RigidBox, RigidBall, MeshFile };
+    bool add_body(AddKind kind, const std::string& mesh = {});
+
     // A rigid body's keys: restitution and friction apply now, the rest at reset.
     void edit_rigid_body(std::size_t index, const RigidBodyDef& def);
     const RigidBodyDef& rigid_body_def(std::size_t index) const { return scene_.rigid_bodies[index]; }
@@ -152,7 +165,7 @@ public:
     render::Frame make_frame() const;
 
     // --- Mouse ---------------------------------------------------------------------------------
-    // What is under pixel (x, y) of a width x height view: the first soft body's particle drawn
+    // What is under pixel (x, y) of a width x height view: a soft body's particle drawn
     // nearest, within `radius` px, or the point of a rigid body's surface the ray meets first,
     // whichever is nearer the eye.
     std::optional<Pick> pick(float x, float y, float width, float height, float radius) const;
@@ -198,6 +211,7 @@ private:
     int ticks_last_frame_ = 0;
     double physics_ms_per_tick_ = 0.0;
     float grab_depth_ = 0.0f;
+    std::size_t selected_body_ = 0;
     float view_aspect_ = 1.6f, view_shift_ = 0.0f;  // distance along the view direction of the grab plane
     // Where the camera's target sits from the bodies' centre, level: along the camera's right
     // and its level forward (m), so an orbit keeps the bodies where they are in the view.

@@ -28,7 +28,7 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                     if (picked) demo.inspect(*picked);
                     else demo.stop_inspecting();
                     drag_button_ = -1;
-                } else if (picked && e.shift && !picked->rigid) {
+                } else if (picked && e.shift && !picked->rigid && picked->body == 0) {
                     demo.toggle_pin(picked->particle);  // shift-click: pin or free
                     drag_button_ = -1;
                 } else if (picked) {

@@ -30,7 +30,8 @@ struct SliderRange {
 };
 constexpr SliderRange kSliders[] = {
     {"scale", 0.05f, 10.0f, true},       {"rotation", -180.0f, 180.0f, false}, {"init_height", 0.0f, 10.0f, false},
-    {"initial_velocity", -10.0f, 10.0f, false}, {"particle_mass", 0.001f, 100.0f, true},
+    {"initial_velocity", -10.0f, 10.0f, false}, {"angular_velocity", -20.0f, 20.0f, false},
+    {"particle_mass", 0.001f, 100.0f, true},
     {"stiffness", 0.0f, 1000.0f, true},  {"damping", 0.0f, 10.0f, true},
     {"gravity", -30.0f, 30.0f, false},   {"dt", 0.001f, 0.05f, true},
     {"drag_coefficient", 0.0f, 2.0f, false}, {"air_density", 0.0f, 1000.0f, true},
@@ -119,6 +120,7 @@ void Panels::draw(Demo& demo, float fps) {
     if (demo.world().rigid_body_count() > 0 && ImGui::CollapsingHeader("Last collision", ImGuiTreeNodeFlags_DefaultOpen)) {
         last_collision(demo);
     }
+    if (ImGui::CollapsingHeader("Add")) add(demo);
     if (ImGui::CollapsingHeader("Parameters")) parameters(demo);
     if (demo.world().rigid_body_count() > 0 && ImGui::CollapsingHeader("Rigid bodies", ImGuiTreeNodeFlags_DefaultOpen)) {
         rigid_bodies(demo);
@@ -397,11 +399,48 @@ void Panels::compare(Demo& demo) {
 
 void Panels::parameters(Demo& demo) {
     Params params = demo.params();
-    bool changed = false;
+    // Several soft bodies: the body keys are the selected body's (click a body to select it),
+    // each edited through that body's own path; the world keys are the world's.
+    const World& world = demo.world();
+    const std::size_t selected = demo.selected_body();
+    const bool flat = world.soft_body_count() > 0 && selected == 0 && world.soft_body(0).name == "body";
+    Params body = world.soft_body_count() > 0 ? demo.body_params(selected) : params;
+    if (world.soft_body_count() > 1) {
+        if (ImGui::BeginCombo("body", world.soft_body(selected).name.c_str())) {
+            for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+                if (ImGui::Selectable(world.soft_body(b).name.c_str(), b == selected)) demo.select_body(b);
+            }
+            ImGui::EndCombo();
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Whose body keys are below (or click a soft body in the view).");
+    }
+    bool changed = false, body_changed = false;
     const Params defaults;
     for (const ParamInfo& info : param_table()) {
         const std::string key(info.key);
         if (info.type == ParamType::String || info.type == ParamType::IndexList) continue;  // Mesh panel / pins
+        const bool of_body = info.scope == ParamScope::Body && !flat && world.soft_body_count() > 0;
+        Params& target = of_body ? body : params;
+        if (info.type == ParamType::OptionalVec3) {
+            // position and color: a box to set them (off: "none"), then three numbers.
+            bool set = param_text(target, key) != "none";
+            const std::string box = "##set" + key;
+            bool edited = ImGui::Checkbox(box.c_str(), &set);
+            ImGui::SameLine();
+            float values[3] = {0.0f, 0.0f, info.key == "color" ? 0.8f : 1.0f};
+            if (set && param_text(target, key) != "none") std::sscanf(param_text(target, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
+            const std::string label = info.live ? key : key + " *";
+            if (info.key == "color") edited |= ImGui::ColorEdit3(label.c_str(), values, ImGuiColorEditFlags_NoInputs);
+            else edited |= ImGui::DragFloat3(label.c_str(), values, 0.05f, float(info.min), float(info.max), "%.2f");
+            tooltip(info);
+            if (edited) {
+                char text[96];
+                std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", values[0], values[1], values[2]);
+                set_param(target, key, set ? text : "none");
+                (of_body ? body_changed : changed) = true;
+            }
+            continue;
+        }
         const std::string label = info.live ? key : key + " *";
         bool edited = false;
         const SliderRange* range = slider_range(key);
@@ -409,10 +448,10 @@ void Panels::parameters(Demo& demo) {
         // A key with a word for 0 ("auto" scale, "all" particles): a checkbox for the word, and
         // the slider for a number when it is off.
         if (!info.zero_word.empty()) {
-            bool word = param_text(params, key) == info.zero_word;
+            bool word = param_text(target, key) == info.zero_word;
             const std::string box = std::string(info.zero_word) + "##" + key;
             if (ImGui::Checkbox(box.c_str(), &word)) {
-                set_param(params, key, word ? std::string(info.zero_word) : param_text(defaults, key) == info.zero_word
+                set_param(target, key, word ? std::string(info.zero_word) : param_text(defaults, key) == info.zero_word
                                                                           ? (info.type == ParamType::Int ? "3000" : "1")
                                                                           : param_text(defaults, key));
                 edited = true;
@@ -421,76 +460,76 @@ void Panels::parameters(Demo& demo) {
             ImGui::SameLine();
             if (word) {
                 ImGui::TextUnformatted(label.c_str());
-                changed |= edited;
+                (of_body ? body_changed : changed) |= edited;
                 continue;
             }
         }
         switch (info.type) {
             case ParamType::Float: {
-                float value = std::stof(param_text(params, key));
+                float value = std::stof(param_text(target, key));
                 edited |= ImGui::SliderFloat(label.c_str(), &value, range->min, range->max, "%.4g", flags);
                 if (edited) {
                     const double lowest = info.min_exclusive ? info.min + 1e-6 : info.min;
                     char text[32];
                     std::snprintf(text, sizeof text, "%.9g", std::clamp(double(value), lowest, info.max));
-                    set_param(params, key, text);
+                    set_param(target, key, text);
                 }
                 break;
             }
             case ParamType::Int: {
-                int value = std::stoi(param_text(params, key));
+                int value = std::stoi(param_text(target, key));
                 const int lowest = static_cast<int>(info.min);
                 const int highest = key == "renormalize_every" ? 50 : key == "max_particles" ? int(info.max) : 64;
                 const ImGuiSliderFlags int_flags = key == "max_particles" ? ImGuiSliderFlags_Logarithmic : 0;
                 edited |= ImGui::SliderInt(label.c_str(), &value, lowest, highest, "%d", int_flags);
-                if (edited) set_param(params, key, std::to_string(std::max(lowest, value)));
+                if (edited) set_param(target, key, std::to_string(std::max(lowest, value)));
                 break;
             }
             case ParamType::Axis: {
                 static constexpr const char* kAxes[] = {"x", "y", "z", "-x", "-y", "-z"};
                 int current = 2;
                 for (int a = 0; a < 6; ++a) {
-                    if (params.up_axis == kAxes[a]) current = a;
+                    if (target.up_axis == kAxes[a]) current = a;
                 }
                 if (ImGui::Combo(label.c_str(), &current, "x\0y\0z\0-x\0-y\0-z\0")) {
-                    set_param(params, key, kAxes[current]);
+                    set_param(target, key, kAxes[current]);
                     edited = true;
                 }
                 break;
             }
             case ParamType::Bool: {
-                bool value = param_text(params, key) == "true";
+                bool value = param_text(target, key) == "true";
                 edited = ImGui::Checkbox(label.c_str(), &value);
-                if (edited) set_param(params, key, value ? "true" : "false");
+                if (edited) set_param(target, key, value ? "true" : "false");
                 break;
             }
             case ParamType::Vec3: {
                 float values[3] = {};
-                std::sscanf(param_text(params, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
+                std::sscanf(param_text(target, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
                 const float speed = key == "rotation" ? 1.0f : 0.05f;
                 edited = ImGui::DragFloat3(label.c_str(), values, speed, range->min, range->max, "%.2f");
                 if (edited) {
                     char text[96];
                     std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", values[0], values[1], values[2]);
-                    set_param(params, key, text);
+                    set_param(target, key, text);
                 }
                 break;
             }
             case ParamType::Integrator: {
-                int current = static_cast<int>(params.integrator);
+                int current = static_cast<int>(target.integrator);
                 const char* names = "verlet\0symplectic_euler\0explicit_euler\0rk4\0";
                 edited = ImGui::Combo(label.c_str(), &current, names);
-                if (edited) params.integrator = static_cast<Integrator>(current);
+                if (edited) target.integrator = static_cast<Integrator>(current);
                 break;
             }
             default: break;
         }
         tooltip(info);
         if (ImGui::IsItemClicked(ImGuiMouseButton_Right)) {
-            set_param(params, key, param_text(defaults, key));
+            set_param(target, key, param_text(defaults, key));
             edited = true;
         }
-        changed |= edited;
+        (of_body ? body_changed : changed) |= edited;
     }
     ImGui::Text("pinned: %zu vertices", params.pinned.size());
     ImGui::SameLine();
@@ -499,6 +538,7 @@ void Panels::parameters(Demo& demo) {
         changed = true;
     }
     if (changed) demo.edit(params);
+    if (body_changed) demo.edit_body(selected, body);
     ImGui::TextDisabled("* applies on reset");
     if (demo.reset_pending()) {
         ImGui::SameLine();
@@ -511,6 +551,29 @@ void Panels::parameters(Demo& demo) {
     }
     ImGui::SameLine();
     ImGui::TextDisabled("(Listing 8's values; keeps the mesh)");
+}
+
+void Panels::add(Demo& demo) {
+    ImGui::TextWrapped("Drops a body above the scene where the camera looks; the others go on as they were.");
+    const ImVec2 button(ImGui::GetContentRegionAvail().x * 0.48f, 0.0f);
+    if (ImGui::Button("Soft ball", button)) demo.add_body(Demo::AddKind::SoftBall);
+    ImGui::SameLine();
+    if (ImGui::Button("Soft cube", button)) demo.add_body(Demo::AddKind::SoftCube);
+    if (ImGui::Button("Rigid box", button)) demo.add_body(Demo::AddKind::RigidBox);
+    ImGui::SameLine();
+    if (ImGui::Button("Rigid ball", button)) demo.add_body(Demo::AddKind::RigidBall);
+    if (!meshes_.empty()) {
+        add_mesh_ = std::min(add_mesh_, int(meshes_.size()) - 1);
+        const std::string current = fs::path(meshes_[std::size_t(add_mesh_)]).filename().string();
+        if (ImGui::BeginCombo("##addmesh", current.c_str())) {
+            for (std::size_t k = 0; k < meshes_.size(); ++k) {
+                if (ImGui::Selectable(fs::path(meshes_[k]).filename().string().c_str(), int(k) == add_mesh_)) add_mesh_ = int(k);
+            }
+            ImGui::EndCombo();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Add mesh")) demo.add_body(Demo::AddKind::MeshFile, meshes_[std::size_t(add_mesh_)]);
+    }
 }
 
 void Panels::mesh(Demo& demo) {

@@ -30,6 +30,7 @@ private:
     void simulation(Demo& demo, float fps);
     void timeline(Demo& demo);
     void parameters(Demo& demo);
+    void add(Demo& demo);  // the Add menu: bodies dropped into the scene
     void mesh(Demo& demo);
     void rigid_bodies(Demo& demo);
     void last_collision(Demo& demo);
@@ -49,6 +50,7 @@ private:
     char preset_path_[1024] = {};
     std::string confirm_overwrite_;             // path awaiting "overwrite?" (empty: none)
     int rigid_selected_ = 0;                    // the rigid body the panel shows
+    int add_mesh_ = 0;                          // the mesh file the Add menu drops
     bool compare_pick_[4] = {false, true, true, false};  // integrators to compare (params.h order)
     int compare_substeps_[4] = {0, 0, 0, 0};             // each one's substeps; 0: automatic
 };

@@ -142,6 +142,14 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
                 fail("record needs start [FILE.mp4] or stop");
             }
             command.verb = verb;
+        } else if (verb == "add") {
+            // add soft_ball | soft_cube | rigid_box | rigid_ball | mesh FILE: the Add menu
+            const bool mesh = !args.empty() && args[0] == "mesh";
+            if (args.empty() || (mesh ? args.size() != 2 : args.size() != 1) ||
+                (!mesh && args[0] != "soft_ball" && args[0] != "soft_cube" && args[0] != "rigid_box" && args[0] != "rigid_ball")) {
+                fail("add needs soft_ball, soft_cube, rigid_box, rigid_ball or mesh FILE");
+            }
+            command.verb = verb;
         } else if (verb == "reset" || verb == "step_back" || verb == "pause" || verb == "play" || verb == "loop") {
             if (!args.empty()) fail(verb + " takes no arguments");
             if (verb == "loop" && command.frame == 0) fail("loop needs a frame after 0");

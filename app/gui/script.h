@@ -17,6 +17,7 @@
 //   96       compare explicit_euler rk4:2   integrators beside the main world (NAME[:SUBSTEPS]), or off
 //   95       reset | pause | play
 //   96       record start [FILE.mp4] | record stop   the Record button (gui/recorder.h)
+//   97       add soft_ball              the Add menu: soft_ball, soft_cube, rigid_box, rigid_ball, mesh FILE
 //   400      loop                       start the script again (from its frame 0) here
 //
 // Events run at the start of their frame, in file order.

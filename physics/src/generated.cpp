@@ -31,7 +31,7 @@ Part split(std::string_view part) {
     if (colon == std::string_view::npos) return {};
     const std::string_view kind = part.substr(0, colon);
     if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "boxes" && kind != "pyramid" && kind != "random" &&
-        kind != "torus" && kind != "lattice") {
+        kind != "torus" && kind != "lattice" && kind != "cube" && kind != "sheet") {
         return {};
     }
     return {kind, part.substr(colon + 1)};
@@ -116,6 +116,67 @@ Mesh lattice(std::size_t a) {
         }
     }
     return build_mesh(raw, "lattice:" + std::to_string(a));
+}
+
+// A closed cube 1 m a side centred on the origin, each face an S x S grid of squares (two
+// triangles each, wound outward): 6 S^2 + 2 particles on its surface, none inside.
+Mesh cube(std::size_t s, std::string_view name) {
+    RawMesh raw;
+    std::vector<std::int32_t> index;  // of each grid point of the (S+1)^3 block, -1 inside
+    const std::size_t a = s + 1;
+    index.assign(a * a * a, -1);
+    const auto at = [&](std::size_t i, std::size_t j, std::size_t k) -> std::int32_t& { return index[(i * a + j) * a + k]; };
+    const float pitch = 1.0f / float(s);
+    for (std::size_t i = 0; i < a; ++i) {
+        for (std::size_t j = 0; j < a; ++j) {
+            for (std::size_t k = 0; k < a; ++k) {
+                if (i != 0 && i != s && j != 0 && j != s && k != 0 && k != s) continue;
+                at(i, j, k) = std::int32_t(raw.positions.size());
+                raw.positions.push_back({float(i) * pitch - 0.5f, float(j) * pitch - 0.5f, float(k) * pitch - 0.5f});
+            }
+        }
+    }
+    // Each face: axis d held at 0 or S, the other two (u, v) running so that u x v points out.
+    const auto quad = [&](std::int32_t p, std::int32_t q, std::int32_t r, std::int32_t t) {
+        for (std::int32_t corner : {p, q, r, p, r, t}) raw.triangle_corners.push_back(Corner{corner, -1, -1});
+    };
+    for (int d = 0; d < 3; ++d) {
+        for (std::size_t side : {std::size_t(0), s}) {
+            const int u = (d + 1) % 3, v = (d + 2) % 3;
+            for (std::size_t m = 0; m < s; ++m) {
+                for (std::size_t n = 0; n < s; ++n) {
+                    const auto point = [&](std::size_t mu, std::size_t nv) {
+                        std::size_t c[3];
+                        c[d] = side;
+                        c[u] = mu;
+                        c[v] = nv;
+                        return at(c[0], c[1], c[2]);
+                    };
+                    // e_u x e_v = e_d: counter-clockwise seen from +d; the far side is turned over.
+                    if (side == s) quad(point(m, n), point(m + 1, n), point(m + 1, n + 1), point(m, n + 1));
+                    else quad(point(m, n), point(m, n + 1), point(m + 1, n + 1), point(m + 1, n));
+                }
+            }
+        }
+    }
+    return build_mesh(raw, std::string(name));
+}
+
+// A flat square sheet 1 m a side in the xy plane, centred on the origin: N x N particles, two
+// triangles a square, facing up. Its corners are vertices 0, N - 1, N (N - 1) and N N - 1.
+Mesh sheet(std::size_t n, std::string_view name) {
+    RawMesh raw;
+    const float pitch = 1.0f / float(n - 1);
+    for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t i = 0; i < n; ++i) raw.positions.push_back({float(i) * pitch - 0.5f, float(j) * pitch - 0.5f, 0.0f});
+    }
+    for (std::size_t j = 0; j + 1 < n; ++j) {
+        for (std::size_t i = 0; i + 1 < n; ++i) {
+            const auto p = std::int32_t(j * n + i), q = p + 1, r = p + 1 + std::int32_t(n), t = p + std::int32_t(n);
+            for (std::int32_t corner : {p, q, r, p, r, t}) raw.triangle_corners.push_back(Corner{corner, -1, -1});
+        }
+    }
+    return build_mesh(raw, std::string(name));
 }
 
 constexpr std::size_t kMaxLattice = 73;  // 73^3 = 389,017 particles, within kMaxCloud
@@ -365,8 +426,14 @@ Mesh generated_mesh(std::string_view name) {
         if (a < 2) throw InputError(std::string(name) + ": lattice takes 2 to " + std::to_string(kMaxLattice) + ", not 1");
         return lattice(a);
     }
+    if (part.kind == "cube") return cube(count_of(name, part, 64), name);
+    if (part.kind == "sheet") {
+        const std::size_t n = count_of(name, part, 400);
+        if (n < 2) throw InputError(std::string(name) + ": sheet takes 2 to 400, not 1");
+        return sheet(n, name);
+    }
     throw InputError(std::string(name) +
-                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS or lattice:A; pile:N, boxes:N, pyramid:L and random:SEED are scenes: use --scene)");
+                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS, lattice:A, cube:S or sheet:N; pile:N, boxes:N, pyramid:L and random:SEED are scenes: use --scene)");
 }
 
 Mesh open_mesh(const std::string& name) { return is_generated(name) ? generated_mesh(name) : load_mesh(name); }
@@ -379,7 +446,8 @@ Scene generated_scene(std::string_view name, const Scene& base) {
         const std::size_t plus = name.find('+', start);
         const std::string_view text = name.substr(start, plus == std::string_view::npos ? std::string_view::npos : plus - start);
         const Part part = split(text);
-        if (part.kind == "cloud" || part.kind == "ball" || part.kind == "torus" || part.kind == "lattice") {
+        if (part.kind == "cloud" || part.kind == "ball" || part.kind == "torus" || part.kind == "lattice" ||
+            part.kind == "cube" || part.kind == "sheet") {
             if (soft) throw InputError(std::string(name) + ": one cloud or ball at most (it is the scene's soft body)");
             soft = true;
             generated_mesh(text);  // checks the count; the World makes the mesh again from its name
@@ -398,7 +466,7 @@ Scene generated_scene(std::string_view name, const Scene& base) {
             random_scene(count_of(name, part, std::size_t(1) << 40), scene);
         } else {
             throw InputError(std::string(name) + ": '" + std::string(text) +
-                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, pile:N, boxes:N, pyramid:L or random:SEED");
+                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, cube:S, sheet:N, pile:N, boxes:N, pyramid:L or random:SEED");
         }
         if (plus == std::string_view::npos) break;
         start = plus + 1;

@@ -151,6 +151,24 @@ ParticleInspection inspect_particle(const World& world, std::size_t b, std::uint
         add("contact with '" + world.rigid_body(std::size_t(c.b)).name + "'", "Eq. 38", to_float(J / double(h)), detail);
     }
 
+    // Other soft bodies (or its own, with self_collision) in the last substep: as the particle
+    // against their surface, and as a corner of a triangle another body's particle pressed on.
+    for (const SoftContact& c : world.soft_contacts()) {
+        const std::string other = "'" + world.soft_body(c.body_a == b ? c.body_b : c.body_a).name + "'";
+        char detail[128];
+        if (c.body_a == b && c.particle == i) {
+            std::snprintf(detail, sizeof detail, "against its surface: lambda %.3g N s over the substep, friction %.3g N s",
+                          c.normal_impulse, c.tangent_impulse);
+            add("contact with " + other, "Eq. 38", to_float(c.impulse / double(h)), detail);
+        }
+        for (int k = 0; k < 3; ++k) {
+            if (c.body_b != b || c.other[k] != i || c.weight[k] == 0.0f || (k > 0 && c.other[k] == c.other[0])) continue;
+            std::snprintf(detail, sizeof detail, "a particle of it on a triangle here: weight %.2f of %.3g N s", double(c.weight[k]),
+                          length(c.impulse));
+            add("contact from " + other, "Eq. 38", to_float(c.impulse * -double(c.weight[k]) / double(h)), detail);
+        }
+    }
+
     for (const ForceTerm& t : out.terms) out.net += t.force;
     out.a = pinned ? Vec3{} : out.net / body.mass;
     return out;

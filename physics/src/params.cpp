@@ -21,6 +21,10 @@ constexpr ParamInfo kTable[] = {
     {"rotation", ParamType::Vec3, "deg", "", "Turns the mesh about x, then y, then z, after up_axis", -360, 360, false, false, ParamScope::Body},
     {"init_height", ParamType::Float, "m", "", "Height added to every vertex's z at the start (Listing 8)", -1e4, 1e4, false, false, ParamScope::Body},
     {"initial_velocity", ParamType::Vec3, "m/s", "", "Velocity of every particle at the start", -1e3, 1e3, false, false, ParamScope::Body},
+    {"position", ParamType::OptionalVec3, "m", "", "Where the body's centre of mass goes at the start (none: the mesh's place, lifted by init_height)", -1e4, 1e4, false, false, ParamScope::Body},
+    {"angular_velocity", ParamType::Vec3, "rad/s", "", "Spin about the centre of mass at the start, world axes (added to initial_velocity)", -1e3, 1e3, false, false, ParamScope::Body},
+    {"color", ParamType::OptionalVec3, "", "", "The body's colour r, g, b from 0 to 1 (none: the palette's)", 0, 1, false, true, ParamScope::Body},
+    {"self_collision", ParamType::Bool, "", "", "The body's particles collide with its own triangles (not those they belong to)", 0, 0, false, true, ParamScope::Body},
     {"particle_mass", ParamType::Float, "kg", "", "Mass m of each particle (Listing 8: 1)", 0, 1e6, true, true, ParamScope::Body},
     {"stiffness", ParamType::Float, "N/m", "Eq. 21", "Spring constant k between every pair (Listing 8: 10)", 0, 1e7, false, true, ParamScope::Body},
     {"damping", ParamType::Float, "kg/s", "Eq. 22", "Damper coefficient c between every pair (Listing 8: 0.1)", 0, 1e6, false, true, ParamScope::Body},
@@ -49,6 +53,7 @@ struct FieldRef {
     std::string* s = nullptr;
     Integrator* e = nullptr;
     std::vector<std::uint32_t>* list = nullptr;
+    std::optional<Vec3>* ov = nullptr;
 };
 
 FieldRef field(Params& p, std::string_view key) {
@@ -58,6 +63,10 @@ FieldRef field(Params& p, std::string_view key) {
     if (key == "rotation") return {.v = &p.rotation};
     if (key == "init_height") return {.f = &p.init_height};
     if (key == "initial_velocity") return {.v = &p.initial_velocity};
+    if (key == "position") return {.ov = &p.position};
+    if (key == "angular_velocity") return {.v = &p.angular_velocity};
+    if (key == "color") return {.ov = &p.color};
+    if (key == "self_collision") return {.b = &p.self_collision};
     if (key == "particle_mass") return {.f = &p.particle_mass};
     if (key == "stiffness") return {.f = &p.stiffness};
     if (key == "damping") return {.f = &p.damping};
@@ -201,10 +210,11 @@ void validate(const Params& params) {
         const FieldRef ref = field(p, info.key);
         if (ref.f) check_range(info, *ref.f);
         if (ref.i) check_range(info, *ref.i);
-        if (ref.v) {
-            check_range(info, ref.v->x, " (x)");
-            check_range(info, ref.v->y, " (y)");
-            check_range(info, ref.v->z, " (z)");
+        const Vec3* v = ref.v ? ref.v : ref.ov && *ref.ov ? &**ref.ov : nullptr;
+        if (v) {
+            check_range(info, v->x, " (x)");
+            check_range(info, v->y, " (y)");
+            check_range(info, v->z, " (z)");
         }
     }
 }
@@ -247,17 +257,24 @@ void set_param(Params& params, std::string_view key, std::string_view text) {
             else bad_value(key, "expected true or false", text);
             break;
         }
-        case ParamType::Vec3: {
+        case ParamType::Vec3:
+        case ParamType::OptionalVec3: {
+            const bool optional = info->type == ParamType::OptionalVec3;
+            if (optional && trim(text) == "none") {
+                *ref.ov = std::nullopt;
+                break;
+            }
             const auto parts = split(text, ',');
             Vec3 v;
             if (parts.size() != 3 || !parse_float(parts[0], v.x) || !parse_float(parts[1], v.y) ||
                 !parse_float(parts[2], v.z)) {
-                bad_value(key, "expected three finite numbers x,y,z", text);
+                bad_value(key, optional ? "expected three finite numbers x,y,z or none" : "expected three finite numbers x,y,z", text);
             }
             check_range(*info, v.x, " (x)");
             check_range(*info, v.y, " (y)");
             check_range(*info, v.z, " (z)");
-            *ref.v = v;
+            if (optional) *ref.ov = v;
+            else *ref.v = v;
             break;
         }
         case ParamType::String:
@@ -304,6 +321,11 @@ std::string param_text(const Params& params, std::string_view key) {
     if (ref.i) return std::to_string(*ref.i);
     if (ref.b) return *ref.b ? "true" : "false";
     if (ref.v) return format_number(ref.v->x) + "," + format_number(ref.v->y) + "," + format_number(ref.v->z);
+    if (ref.ov) {
+        if (!*ref.ov) return "none";
+        const Vec3& v = **ref.ov;
+        return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z);
+    }
     if (ref.s) return *ref.s;
     if (ref.e) return std::string(to_string(*ref.e));
     if (ref.list) {

@@ -38,6 +38,7 @@ constexpr RigidKeyInfo kKeys[] = {
     {"restitution", RigidKeyType::Number, "", "Eq. 38", "Coefficient of restitution e at its contacts (default: the world's)", 0, 1},
     {"friction", RigidKeyType::Number, "", "", "Coulomb friction mu at its contacts (default: the world's dynamic_friction)", 0, 2},
     {"drag_coefficient", RigidKeyType::Number, "", "Eq. 23", "Drag coefficient C_D at its centre of mass (default 0: none)", 0, 10},
+    {"color", RigidKeyType::Vec3, "", "", "The body's colour r, g, b from 0 to 1 (default: the palette's)", 0, 1},
 };
 
 std::string number_text(double x) {
@@ -260,6 +261,7 @@ void set_rigid_key(RigidBodyDef& def, std::string_view key, std::string_view tex
             else if (key == "rotation") def.orientation = Quat::from_degrees_xyz(value);
             else if (key == "velocity") def.velocity = value;
             else if (key == "angular_velocity") def.angular_velocity = value;
+            else if (key == "color") def.color = value;
             break;
         }
         case RigidKeyType::Quat: {
@@ -312,6 +314,7 @@ std::string rigid_key_text(const RigidBodyDef& def, std::string_view key) {
     if (key == "restitution") return def.restitution ? number_text(*def.restitution) : "";
     if (key == "friction") return def.friction ? number_text(*def.friction) : "";
     if (key == "drag_coefficient") return number_text(def.drag_coefficient);
+    if (key == "color") return def.color ? vec(*def.color) : "";
     return "";
 }
 
@@ -347,6 +350,7 @@ RigidBody make_rigid_body(const RigidBodyDef& def) {
     symmetric_eigen(body.J_body, body.principal_moments, body.principal_axes);
     body.restitution = def.restitution;
     body.friction = def.friction;
+    body.color = def.color;
     body.drag_coefficient = def.drag_coefficient;
     body.drag_area = 3.14159265358979323846 * g.bounding_radius * g.bounding_radius;
 

@@ -71,9 +71,12 @@ std::string value_text(const ParamInfo& info, const json& value) {
             if (!value.is_boolean()) return fail("true or false");
             return value.get<bool>() ? "true" : "false";
         case ParamType::Vec3:
+        case ParamType::OptionalVec3:
+            if (info.type == ParamType::OptionalVec3 && value.is_string() && value.get<std::string>() == "none") return "none";
             if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
                 !value[2].is_number()) {
-                return fail("an array of three numbers [x, y, z]");
+                return fail(info.type == ParamType::OptionalVec3 ? "an array of three numbers [x, y, z] or \"none\""
+                                                                 : "an array of three numbers [x, y, z]");
             }
             return number(value[0]) + "," + number(value[1]) + "," + number(value[2]);
         case ParamType::String:
@@ -102,7 +105,8 @@ json value_json(const Params& params, const ParamInfo& info) {
         case ParamType::Float: return json(std::stod(text));
         case ParamType::Int: return json(std::stoll(text));
         case ParamType::Bool: return json(text == "true");
-        case ParamType::Vec3: {
+        case ParamType::Vec3:
+        case ParamType::OptionalVec3: {
             json v = json::array();
             std::istringstream parts(text);
             for (std::string part; std::getline(parts, part, ',');) v.push_back(std::stod(part));
@@ -215,6 +219,7 @@ json rigid_value_json(const RigidBodyDef& def, std::string_view key) {
     if (key == "restitution") return def.restitution ? json(*def.restitution) : json();
     if (key == "friction") return def.friction ? json(*def.friction) : json();
     if (key == "drag_coefficient") return def.drag_coefficient;
+    if (key == "color") return def.color ? vec(*def.color) : json();
     return json();  // "rotation": kept as the orientation
 }
 
@@ -411,6 +416,9 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
             throw InputError(where(origin, text, key) + ": " + e.what());
         }
     }
+    if (root.contains("position") && root.contains("init_height")) {
+        throw InputError(where(origin, text, "position") + ": soft body 'body': give 'position' or 'init_height', not both");
+    }
     if (root.contains("mesh")) {
         params.mesh = relative_to(origin, params.mesh);
         fit_unless_given(root, params);
@@ -441,6 +449,10 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
                 }
             }
             if (body.params.mesh.empty()) throw InputError(line + ": soft body '" + printable(body.name) + "' needs a \"mesh\"");
+            if (element.contains("position") && element.contains("init_height")) {
+                throw InputError(where_after(origin, text, at, "position") + ": soft body '" + printable(body.name) +
+                                 "': give 'position' or 'init_height', not both");
+            }
             body.params.mesh = relative_to(origin, body.params.mesh);
             fit_unless_given(element, body.params);
             scene.soft_bodies.push_back(std::move(body));
@@ -546,6 +558,8 @@ std::string scene_to_json(const Scene& scene) {
         for (const auto& info : param_table()) {
             if (body_only && info.scope != ParamScope::Body) continue;
             if (info.type == ParamType::String && param_text(params, info.key).empty()) continue;
+            if (info.type == ParamType::OptionalVec3 && param_text(params, info.key) == "none") continue;
+            if (info.key == "init_height" && params.position) continue;  // the position places the body
             object[std::string(info.key)] = value_json(params, info);
         }
         return object;

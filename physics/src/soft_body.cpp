@@ -100,6 +100,13 @@ void build_particles(SoftBody& body) {
         centre += q;
     }
     centre = centre / static_cast<float>(n);
+    // `position` puts the centre of mass (every particle weighs the same: the mean) there,
+    // instead of the file's place lifted by init_height.
+    if (p.position) {
+        const Vec3 shift = *p.position - centre;
+        for (std::size_t i = 0; i < n; ++i) body.rest.set(i, body.rest[i] + shift);
+        centre = *p.position;
+    }
     body.rest_radius = 0.0f;
     for (std::size_t i = 0; i < n; ++i) body.rest_radius = std::max(body.rest_radius, length(body.rest[i] - centre));
     // The bindings' offsets are in the file's units: in metres they scale with the body.
@@ -111,7 +118,11 @@ void build_particles(SoftBody& body) {
 
     copy(body.rest, body.x);
     body.v.resize(n);
-    for (std::size_t i = 0; i < n; ++i) body.v.set(i, p.initial_velocity);
+    // Every particle moves with the body: v = v_0 + w x (x - c), a rigid motion at the start.
+    const bool spin = p.angular_velocity.x != 0.0f || p.angular_velocity.y != 0.0f || p.angular_velocity.z != 0.0f;
+    for (std::size_t i = 0; i < n; ++i) {
+        body.v.set(i, spin ? p.initial_velocity + cross(p.angular_velocity, body.rest[i] - centre) : p.initial_velocity);
+    }
     body.inv_mass.assign(n, 1.0f);
     apply_body_keys(body);
     for (std::uint32_t vertex : p.pinned) {

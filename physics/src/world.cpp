@@ -14,6 +14,7 @@
 #include "message_text.h"
 #include "particle_contacts.h"
 #include "rigid_contacts.h"
+#include "soft_contacts.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -51,6 +52,7 @@ World::World(WorldDef def, WorldOptions options)
     : params_(def.params),
       rigid_contact_scratch_(std::make_unique<RigidContactScratch>()),
       solver_(std::make_unique<ContactSolver>()),
+      soft_contacts_(std::make_unique<SoftContacts>()),
       reference_kernel_(options.reference_kernel) {
     validate(params_);
     pool_ = std::make_unique<ThreadPool>(std::max(1, options.threads));
@@ -92,6 +94,8 @@ World::~World() = default;
 
 void World::build() {
     for (SoftBody& body : soft_) build_particles(body);
+    soft_contacts_->build(soft_);
+    soft_touching_ = false;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         std::copy(rigid_[b].initial.begin(), rigid_[b].initial.end(), y_.begin() + std::ptrdiff_t(b * rigid::kStateSize));
     }
@@ -107,6 +111,8 @@ void World::build() {
 }
 
 void World::reset() { build(); }
+
+const std::vector<SoftContact>& World::soft_contacts() const { return soft_contacts_->contacts(); }
 
 WorldSnapshot World::snapshot() const {
     WorldSnapshot out;
@@ -125,11 +131,11 @@ WorldSnapshot World::snapshot() const {
     return out;
 }
 
-void World::restore(const WorldSnapshot& s) {
-    if (s.soft.size() != soft_.size() || s.rigid.size() != y_.size()) {
-        throw std::invalid_argument("World::restore: a snapshot of another world");
-    }
-    for (std::size_t b = 0; b < soft_.size(); ++b) {
+void World::restore(const WorldSnapshot& s, bool more_bodies) {
+    const bool fits = more_bodies ? s.soft.size() <= soft_.size() && s.rigid.size() <= y_.size()
+                                  : s.soft.size() == soft_.size() && s.rigid.size() == y_.size();
+    if (!fits || s.rigid.size() != s.rigid_tick_prev.size()) throw std::invalid_argument("World::restore: a snapshot of another world");
+    for (std::size_t b = 0; b < s.soft.size(); ++b) {
         SoftBody& body = soft_[b];
         const WorldSnapshot::Soft& from = s.soft[b];
         if (from.x.size() != body.particle_count()) throw std::invalid_argument("World::restore: a snapshot of another body");
@@ -140,9 +146,13 @@ void World::restore(const WorldSnapshot& s) {
         body.inv_mass = from.inv_mass;
         body.verlet_h = from.verlet_h;
     }
-    y_ = s.rigid;
-    y_tick_prev_ = s.rigid_tick_prev;
-    contacts_ = s.contacts;
+    std::copy(s.rigid.begin(), s.rigid.end(), y_.begin());
+    std::copy(s.rigid_tick_prev.begin(), s.rigid_tick_prev.end(), y_tick_prev_.begin());
+    if (more_bodies) {
+        contacts_.clear();  // the next tick finds them with the new bodies
+    } else {
+        contacts_ = s.contacts;
+    }
     previous_contacts_.clear();
     ticks_ = s.ticks;
     status_ = s.status;
@@ -233,14 +243,20 @@ void World::set_threads(int threads) {
     for (SoftBody& body : soft_) body.kernel = std::make_unique<PairForceKernel>(*pool_);
 }
 
+void World::set_body_params(std::size_t b, const Params& params) {
+    if (b >= soft_.size()) throw InputError("there is no soft body number " + std::to_string(b));
+    validate(params);
+    check_pins(params, soft_[b].mesh);
+    if (!(params == soft_[b].params)) energy_baseline_stale_ = true;
+    soft_[b].params = params;
+    apply_body_keys(soft_[b]);
+    update_substeps();
+}
+
 void World::set_params(const Params& params) {
     validate(params);
     // The flat keys' soft body, when there is one, takes the body keys.
-    if (!soft_.empty() && soft_.front().name == "body") {
-        check_pins(params, soft_.front().mesh);
-        soft_.front().params = params;
-        apply_body_keys(soft_.front());
-    }
+    if (!soft_.empty() && soft_.front().name == "body") set_body_params(0, params);
     // Switching to Verlet restarts it from the current x and v (x_{-1} = x_0 - v_0 h): its step
     // was last kept up to date when Verlet last ran, and is stale by now.
     if (params.integrator != params_.integrator) {
@@ -385,6 +401,7 @@ void World::step(float h) {
     if (contacts) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
+    if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_);
     switch (params_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
@@ -425,6 +442,7 @@ void World::step(float h) {
     // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
     if (contacts) solver_->substep(contact_world());
+    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, params_, h);
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
@@ -547,12 +565,16 @@ void World::tick() {
     // an impact in the middle of a tick has its substeps and contacts follow it at once.
     contact_energy_ = {};
     tick_substeps_ = 0;
+    // Soft bodies within reach of one another (or of themselves): found before the last
+    // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
+    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt);
     const double dt = params_.dt;
     double left = dt;
     for (bool first = true; left > 1e-9 * dt; first = false) {
         const double part = left / dt;
         int steps = std::max(1, int(std::ceil(double(substeps_) * part - 1e-9)));
         if (params_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
+        if (soft_touching_) steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * part - 1e-9)));
         double span = left;
         if (!rigid_.empty()) {
             // Contacts within reach of the rest of the tick; while a body turns fast, solved

@@ -169,6 +169,20 @@ TEST(App, DraggingTheBodyLiftsIt) {
     EXPECT_GT(com_z(dragged), com_z(still) + 0.3) << "the drag did not lift the body";
 }
 
+TEST(App, AddMenuDropsBodiesThatLandOnOneAnother) {
+    // A soft cube dropped beside the sphere, then a rigid ball dropped over the same spot: the
+    // ball lands on the cube (soft triangles hold it), well above where the ground would.
+    const fs::path script = write_script("add.script", "5 add soft_cube\n40 add rigid_ball\n");
+    const Result r = run_app("--size 960x600 --frames 240 --script " + quote(script.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.summary["status"], "ok");
+    ASSERT_EQ(r.summary["rigid_bodies"].size(), 1u);
+    EXPECT_EQ(r.summary["rigid_bodies"][0]["name"], "ball1");
+    // The ball's radius is 0.25 m: on the ground its centre would be at 0.25; on the 0.5 m cube
+    // (squashed a little under it) well above that.
+    EXPECT_GT(r.summary["rigid_bodies"][0]["position"][2].get<double>(), 0.55);
+}
+
 TEST(App, DraggingARigidBodyByItsEndLiftsAndTurnsIt) {
     // A plank lying on the ground; grab its right end (where it is drawn in a 960x600 window)
     // and pull up: the pull acts at the grabbed point, so the plank rises and tilts.

@@ -35,6 +35,23 @@ struct RigidContact {
     double warm_twist = 0.0;   // friction's turn about the normal (its manifold's share)
 };
 
+// A particle of one soft body against the surface of another (or of its own, with
+// self_collision): against a triangle, or a point cloud's particle (soft_contacts.h). Its
+// impulse acts on the particle (side a) and, opposite, on the three particles of the other
+// side by their weights, so that momentum is kept exactly.
+struct SoftContact {
+    std::uint32_t body_a = 0, particle = 0;  // the particle
+    std::uint32_t body_b = 0;                // the surface's body (body_a itself in self contact)
+    std::uint32_t other[3] = {0, 0, 0};      // its particles: a triangle's corners, or one particle three times
+    float weight[3] = {0.0f, 0.0f, 0.0f};    // barycentric weights of the nearest point (sum 1)
+    Vec3d normal;                            // unit, out of the surface toward the particle
+    double separation = 0.0;                 // gap beyond the contact distance as the substep began, m (< 0: overlap)
+    double distance = 0.0;                   // the contact distance: the surface's thickness plus the particle's radius, m
+    double normal_impulse = 0.0;             // lambda on the particle over the last substep, N s
+    double tangent_impulse = 0.0;            // friction's size over the last substep, N s
+    Vec3d impulse;                           // the whole impulse on the particle over the last substep, N s
+};
+
 // The whole impulse a contact's solver applied on side a, normal and tangential (friction)
 // together, N s (side b took the opposite).
 Vec3d contact_impulse(const RigidContact& contact);

@@ -11,6 +11,10 @@
 //   torus:RxS   a closed torus 1.4 m across (centre line radius 0.5 m, tube radius 0.2 m), R
 //               vertices around the centre line times S around the tube (R, S >= 3), smooth
 //   lattice:A   A^3 particles on a cubic grid filling a 1 m cube (A = 2 to 73), no faces
+//   cube:S      a closed cube 1 m a side, each face an S x S grid (S = 1 to 64; 6 S^2 + 2
+//               particles, all on its surface)
+//   sheet:N     a flat square sheet 1 m a side, N x N particles (N = 2 to 400), facing up; its
+//               corners are vertices 0, N - 1, N (N - 1) and N^2 - 1
 //   pile:N      a scene of N rigid bodies (boxes, spheres, cylinders and icosahedra, ball:0,
 //               by turns, in layers) dropped into a fixed bin that grows with N
 //   boxes:N     a scene of N boxes and balls by turns dropped into a bin as pile:N is
@@ -32,12 +36,12 @@
 
 namespace softbody {
 
-// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "pile:N", "boxes:N", "pyramid:L",
+// True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "cube:S", "sheet:N", "pile:N", "boxes:N", "pyramid:L",
 // "random:SEED" and sums of them: a name,
 // not a file.
 bool is_generated(std::string_view name);
 
-// The mesh a name makes ("cloud:N", "ball:S", "torus:RxS", "lattice:A"); InputError for a count out of range or a scene-only name.
+// The mesh a name makes ("cloud:N", "ball:S", "torus:RxS", "lattice:A", "cube:S", "sheet:N"); InputError for a count out of range or a scene-only name.
 Mesh generated_mesh(std::string_view name);
 
 // A mesh by the name a scene or --mesh gives: a generated one when the name has that form

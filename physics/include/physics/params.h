@@ -31,6 +31,10 @@ struct Params {
     Vec3 rotation{0.0f, 0.0f, 0.0f};           // degrees about x, then y, then z, after up_axis
     float init_height = 2.0f;                  // m added to every vertex's z (Listing 8)
     Vec3 initial_velocity{0.0f, 0.0f, 0.0f};   // m/s, every particle
+    std::optional<Vec3> position;              // m: where the centre of mass goes (instead of init_height)
+    Vec3 angular_velocity{0.0f, 0.0f, 0.0f};   // rad/s about the centre of mass, world axes, at the start
+    std::optional<Vec3> color;                 // r, g, b from 0 to 1 (empty: the palette's)
+    bool self_collision = false;               // the body's particles against its own triangles
     float particle_mass = 1.0f;                // kg per particle (Listing 8)
     float stiffness = 10.0f;                   // k, N/m (Eq. 21)
     float damping = 0.1f;                      // c, kg/s (Eq. 22)
@@ -53,7 +57,8 @@ struct Params {
     bool operator==(const Params&) const = default;
 };
 
-enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList, Axis };
+// OptionalVec3: three numbers, or the word "none" (unset; a scene file leaves the key out).
+enum class ParamType { Float, Int, Bool, Vec3, String, Integrator, IndexList, Axis, OptionalVec3 };
 
 // Whose key it is: the world's (dt, gravity, the ground, ...), or a soft body's (its mesh,
 // mass, springs, ...). A scene file's flat keys hold both: the world's and those of the soft

@@ -62,6 +62,7 @@ struct RigidBodyDef {
     std::optional<float> restitution;  // e at contacts (default: the world's `restitution`)
     std::optional<float> friction;     // mu at contacts (default: the world's `dynamic_friction`)
     float drag_coefficient = 0.0f;     // C_D of Eq. 23 (default 0: no drag)
+    std::optional<Vec3d> color;        // r, g, b from 0 to 1 (default: the palette's)
 
     bool operator==(const RigidBodyDef&) const = default;
 };
@@ -107,6 +108,7 @@ struct RigidBody {
     bool fixed = false;
 
     std::optional<float> restitution, friction;  // empty: the world's
+    std::optional<Vec3d> color;                  // empty: the palette's (for drawing only)
     float drag_coefficient = 0.0f;
     double drag_area = 0.0;     // S of Eq. 23: the bounding sphere's cross-section, m^2
 

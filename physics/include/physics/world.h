@@ -5,9 +5,10 @@
 // tick() is the step in order and nothing else (world.cpp): forces, integration, contacts,
 // checks. Each of those lives in a file of its own, named for its concept.
 //
-// Soft bodies do not collide with one another (as in Jolt): each feels its own springs and
-// dampers, gravity, drag, the ground, the rigid bodies its particles touch and the springs
-// attached to it.
+// Soft bodies collide with one another: each particle with the other bodies' surfaces, and
+// with its own body's where that body asks for it (self_collision; soft_contacts.h). Each
+// feels its own springs and dampers, gravity, drag, the ground, the rigid bodies its particles
+// touch, the other soft bodies and the springs attached to it.
 #pragma once
 
 #include <cstdint>
@@ -31,6 +32,7 @@ namespace softbody {
 
 struct RigidContactScratch;  // rigid_contacts.h
 class ContactSolver;         // contact_solver.h
+class SoftContacts;          // soft_contacts.h
 struct ContactWorld;
 struct SolverParticles;
 
@@ -148,12 +150,17 @@ public:
 
     // Time travel: the state as it is now, and back to a state taken earlier from this world.
     WorldSnapshot snapshot() const;
-    void restore(const WorldSnapshot& snapshot);
+    // With `more_bodies`, the snapshot may be of this world before bodies were added at the end
+    // of its lists (the app's Add menu): those it holds go on from it, the new ones start as built.
+    void restore(const WorldSnapshot& snapshot, bool more_bodies = false);
 
     // The world's keys, and the first soft body's. Keys marked live in param_table() apply
     // from the next tick; the rest (mesh, scale, init_height, initial_velocity, pinned) apply
     // at the next reset(). Throws InputError.
     void set_params(const Params& params);
+    // One soft body's keys (ParamScope::Body; its world keys are not read), as set_params says
+    // for the first: the one path a body's keys take, whichever body it is. Throws InputError.
+    void set_body_params(std::size_t body, const Params& params);
     const Params& params() const { return params_; }
 
     void set_threads(int threads);
@@ -190,6 +197,9 @@ public:
     // Contacts of the last step: rigid bodies with the ground and with one another, and soft
     // bodies' particles with rigid bodies (RigidContact::soft).
     const std::vector<RigidContact>& contacts() const { return contacts_; }
+    // Soft bodies' particles against other soft bodies' surfaces (and their own, with
+    // self_collision) that pushed in the last substep.
+    const std::vector<SoftContact>& soft_contacts() const;
     // Eq. 38 term by term for one of them, with the bodies' inertia where they are now.
     ImpulseTerms impulse_terms(const RigidContact& contact) const;
     const std::vector<Link>& links() const { return links_; }
@@ -265,6 +275,8 @@ private:
     std::vector<RigidContact> contacts_, previous_contacts_;
     std::unique_ptr<RigidContactScratch> rigid_contact_scratch_;  // the broad phase's buffers
     std::unique_ptr<ContactSolver> solver_;
+    std::unique_ptr<SoftContacts> soft_contacts_;  // soft against soft (soft_contacts.h)
+    bool soft_touching_ = false;                   // the tick has soft-soft pairs within reach
     std::vector<SolverParticles> solver_particles_;
     std::vector<const Vec3Array*> solver_particle_v_;
     ContactEnergy contact_energy_;

@@ -1,0 +1,645 @@
+#include "soft_contacts.h"
+
+#include "ground_contact.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace softbody {
+
+namespace {
+
+constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
+constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
+constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity more than this ends them
+// m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
+// the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
+// triangles between them should not stand off it by more than that.
+constexpr double kRigidThickness = 0.001;
+
+// The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
+// region p falls in (a corner, an edge, or the face), each tested with dot products only.
+std::array<float, 3> nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return {1.0f, 0.0f, 0.0f};
+    const Vec3 bp = p - b;
+    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return {0.0f, 1.0f, 0.0f};
+    const float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+        const float t = d1 / (d1 - d3);
+        return {1.0f - t, t, 0.0f};
+    }
+    const Vec3 cp = p - c;
+    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return {0.0f, 0.0f, 1.0f};
+    const float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+        const float t = d2 / (d2 - d6);
+        return {1.0f - t, 0.0f, t};
+    }
+    const float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+        const float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {0.0f, 1.0f - t, t};
+    }
+    const float sum = va + vb + vc;
+    if (!(sum > 0.0f)) return {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};  // a degenerate triangle: its centre
+    const float v = vb / sum, w = vc / sum;
+    return {1.0f - v - w, v, w};
+}
+
+Box3f box_of(const Vec3& p, float grow) { return {p - Vec3{grow, grow, grow}, p + Vec3{grow, grow, grow}}; }
+
+// Half the median distance from a particle to its nearest neighbour: the radius of a point
+// cloud's particles (balls that just touch their neighbours). By a sweep along x: each
+// particle looks at the particles after it in x order until the x gap alone is farther than
+// the nearest found.
+float cloud_radius(const Vec3Array& x) {
+    const std::size_t n = x.size();
+    if (n < 2) return kSurfaceThickness;
+    std::vector<std::uint32_t> order(n);
+    for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return x.x[a] < x.x[b] || (x.x[a] == x.x[b] && a < b); });
+    std::vector<float> nearest(n, INFINITY);
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t i = order[k];
+        for (std::size_t m = k + 1; m < n; ++m) {
+            const std::uint32_t j = order[m];
+            const float gap = x.x[j] - x.x[i];
+            if (gap * gap >= nearest[i] && gap * gap >= nearest[j]) break;
+            const Vec3 d = x[j] - x[i];
+            const float d2 = dot(d, d);
+            nearest[i] = std::min(nearest[i], d2);
+            nearest[j] = std::min(nearest[j], d2);
+        }
+    }
+    std::nth_element(nearest.begin(), nearest.begin() + std::ptrdiff_t(n / 2), nearest.end());
+    const float r = 0.5f * std::sqrt(nearest[n / 2]);
+    return std::isfinite(r) && r > 0.0f ? r : kSurfaceThickness;
+}
+
+float distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto w = nearest_on_triangle(p, a, b, c);
+    return length(p - (a * w[0] + b * w[1] + c * w[2]));
+}
+
+}  // namespace
+
+void SoftContacts::build(const std::vector<SoftBody>& bodies) {
+    surfaces_.assign(bodies.size(), {});
+    reach_.assign(bodies.size(), {});
+    dv_.assign(bodies.size(), {});
+    touched_.assign(bodies.size(), {});
+    marked_.assign(bodies.size(), {});
+    pairs_.clear();
+    active_.clear();
+    touching_.clear();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const SoftBody& body = bodies[b];
+        Surface& s = surfaces_[b];
+        // The simulated particles' surface: the mesh's own, or a reduced body's particle mesh.
+        const Mesh& mesh = body.reduced ? body.particle_mesh : body.mesh;
+        for (const auto& t : particle_triangles(mesh)) {
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+            if (t[0] >= body.particle_count() || t[1] >= body.particle_count() || t[2] >= body.particle_count()) continue;
+            s.triangles.insert(s.triangles.end(), t.begin(), t.end());
+        }
+        s.radius = s.triangles.empty() ? cloud_radius(body.rest) : 0.0f;
+        dv_[b].resize(body.particle_count());
+        marked_[b].assign(body.particle_count(), 0);
+    }
+}
+
+void SoftContacts::prim_points(const Pair& pair, std::uint32_t out[3]) const {
+    const Surface& s = surfaces_[pair.b];
+    if (s.triangles.empty()) {
+        out[0] = out[1] = out[2] = pair.prim;
+        return;
+    }
+    out[0] = s.triangles[3 * pair.prim];
+    out[1] = s.triangles[3 * pair.prim + 1];
+    out[2] = s.triangles[3 * pair.prim + 2];
+}
+
+bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                        const Params& world, double dt) {
+    pairs_.clear();
+    rigid_pairs_.clear();
+    if (surfaces_.size() != bodies.size()) build(bodies);
+    bool wanted = false, any_faces = false;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        wanted = wanted || bodies[b].params.self_collision;
+        any_faces = any_faces || !surfaces_[b].triangles.empty();
+    }
+    const bool rigid_near = any_faces && !rigid.empty();
+    if (bodies.size() < 2 && !wanted && !rigid_near) return false;
+    const float h = float(dt), g = length(world.gravity);
+    // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
+    // speed, with gravity, twice what its last tick's forces added to the way it went, and a
+    // millimetre. Each body's box with it.
+    std::vector<Box3f> whole(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const SoftBody& body = bodies[b];
+        std::vector<float>& reach = reach_[b];
+        reach.resize(body.particle_count());
+        for (std::size_t i = 0; i < body.particle_count(); ++i) {
+            const Vec3 p = body.x[i];
+            const float pushed = length(p - body.x_tick_prev[i] - body.v[i] * h);
+            reach[i] = h * length(body.v[i]) + 2.0f * pushed + h * h * g + 1e-3f;
+            const Box3f box = box_of(p, reach[i] + surfaces_[b].radius + kSurfaceThickness);
+            if (i == 0) whole[b] = box;
+            else whole[b].grow(box);
+        }
+    }
+    // Each rigid body's box where the tick begins, grown by how far it can move in it
+    // (speculative_margin, ground_contact.h).
+    rigid_box_.resize(rigid.size());
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        const RigidMotion m = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
+        const double margin = rigid[r].fixed ? 0.0 : speculative_margin(rigid[r], m, dt, double(g));
+        const float grow = float(rigid[r].bounding_radius + margin + kRigidThickness);
+        rigid_box_[r] = box_of(to_float(m.x), grow);
+    }
+    const auto meets_rigid = [&](std::size_t r, std::size_t b) {
+        return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
+    };
+    // Which pairs of bodies can meet at all; each body's tree refit only when some can.
+    const auto meets = [&](std::size_t a, std::size_t b) {
+        if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
+        return whole[a].overlaps(whole[b]);
+    };
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        bool needed = false;
+        for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
+        for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(r, b);
+        if (!needed) continue;
+        const SoftBody& body = bodies[b];
+        Surface& s = surfaces_[b];
+        const std::vector<float>& reach = reach_[b];
+        const bool faces = !s.triangles.empty();
+        const std::size_t count = faces ? s.triangles.size() / 3 : body.particle_count();
+        s.boxes.resize(count);
+        for (std::size_t t = 0; t < count; ++t) {
+            if (!faces) {
+                s.boxes[t] = box_of(body.x[t], reach[t]);
+                continue;
+            }
+            const std::uint32_t* v = &s.triangles[3 * t];
+            Box3f box = box_of(body.x[v[0]], reach[v[0]]);
+            box.grow(box_of(body.x[v[1]], reach[v[1]]));
+            box.grow(box_of(body.x[v[2]], reach[v[2]]));
+            s.boxes[t] = box;
+        }
+        if (s.tree.empty()) s.tree.build(s.boxes);
+        else s.tree.refit(s.boxes);
+    }
+    for (std::size_t a = 0; a < bodies.size(); ++a) {
+        const SoftBody& A = bodies[a];
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            if (!meets(a, b)) continue;
+            const SoftBody& B = bodies[b];
+            const Surface& s = surfaces_[b];
+            const bool faces = !s.triangles.empty();
+            // Two point clouds meet once, ball against ball; a body with faces meets a point
+            // cloud particle against particle as well as the cloud's particles against its faces.
+            if (!faces && surfaces_[a].triangles.empty() && b < a) continue;
+            const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
+            for (std::uint32_t p = 0; p < A.particle_count(); ++p) {
+                if (!whole[b].overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) continue;
+                const bool fixed_p = A.inv_mass[p] == 0.0f;
+                const std::size_t group = pairs_.size();
+                float nearest = INFINITY;
+                Vec3 nearest_away;
+                s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
+                    Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
+                    std::uint32_t v[3];
+                    prim_points(pair, v);
+                    if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+                    if (a == b) {
+                        // Self contact: never a triangle the particle is a corner of, nor one
+                        // it was within reach of at rest (the same stretch of surface).
+                        if (v[0] == p || v[1] == p || v[2] == p) return;
+                        if (distance_to_triangle(A.rest[p], A.rest[v[0]], A.rest[v[1]], A.rest[v[2]]) < 2.0f * d) return;
+                    }
+                    // Within reach by the nearest point, not just by the boxes: a particle's box
+                    // meets a dozen small triangles of which one or two can matter.
+                    if (faces) {
+                        const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
+                        const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+                        const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
+                        const float distance = length(away);
+                        if (distance > d + r) return;
+                        if (distance < nearest) {
+                            nearest = distance;
+                            nearest_away = away;
+                        }
+                        pair.found_at = distance;
+                        pair.reach = r;
+                        pair.away = away;
+                    }
+                    pairs_.push_back(pair);
+                });
+                // A particle's contact with a surface is its nearest point, and the nearest on
+                // its other side (begin_substep): of its triangles, only those that can come
+                // nearer in the tick than the nearest one can go away, and those across it.
+                if (faces && pairs_.size() > group + 1) {
+                    std::size_t kept = group;
+                    for (std::size_t k = group; k < pairs_.size(); ++k) {
+                        const Pair& q = pairs_[k];
+                        if (q.found_at - q.reach <= nearest + q.reach || dot(q.away, nearest_away) < 0.0f) pairs_[kept++] = q;
+                    }
+                    pairs_.resize(kept);
+                }
+            }
+        }
+    }
+    // Rigid shapes against the triangles: a sphere's centre, or each hull vertex, against every
+    // triangle whose box its body's box meets, kept when within reach by the nearest point.
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        const RigidBody& body = rigid[r];
+        const RigidMotion m = rigid_motion(body, &state[r * rigid::kStateSize]);
+        const double margin = body.fixed ? 0.0 : speculative_margin(body, m, dt, double(g));
+        const std::size_t first = rigid_pairs_.size();
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+            if (!meets_rigid(r, b)) continue;
+            const SoftBody& B = bodies[b];
+            const Surface& s = surfaces_[b];
+            s.tree.query(rigid_box_[r], [&](std::uint32_t t) {
+                const std::uint32_t* v = &s.triangles[3 * t];
+                if (body.fixed && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+                const double reach = margin + double(std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]})) + kRigidThickness;
+                const Vec3 face = cross(B.x[v[1]] - B.x[v[0]], B.x[v[2]] - B.x[v[0]]);
+                // Which side of the triangle the point is on (on it, within rounding: the side
+                // the triangle faces, outward for a closed body wound as files wind them).
+                const auto add = [&](const Vec3d& local, double radius, std::uint32_t feature) {
+                    const Vec3 p = to_float(m.x + m.R * local);
+                    const auto w = nearest_on_triangle(p, B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+                    const Vec3 away = p - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
+                    if (double(length(away)) - radius > reach) return;
+                    const float side = dot(away, face) < -1e-6f * length(face) ? -1.0f : 1.0f;
+                    rigid_pairs_.push_back({std::uint32_t(r), feature, std::uint32_t(b), t, side});
+                };
+                if (body.shape == ShapeKind::Sphere) {
+                    add({}, body.radius, 0);
+                    return;
+                }
+                for (std::uint32_t k = 0; k < body.hull->vertices.size(); ++k) add(body.hull->vertices[k], 0.0, k);
+            });
+        }
+        // One point's triangles together (begin_substep keeps its nearest), in a fixed order.
+        std::stable_sort(rigid_pairs_.begin() + std::ptrdiff_t(first), rigid_pairs_.end(), [](const RigidPair& x, const RigidPair& y) {
+            return x.soft < y.soft || (x.soft == y.soft && x.feature < y.feature);
+        });
+    }
+    return !pairs_.empty() || !rigid_pairs_.empty();
+}
+
+// The contact of one pair where the substep begins: the nearest point, its weights and normal,
+// Eq. 38's denominator and the closing speed. False when out of reach for the rest of the tick.
+bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const {
+    const SoftBody& A = bodies[pair.a];
+    const SoftBody& B = bodies[pair.b];
+    c.c.body_a = pair.a;
+    c.c.particle = pair.p;
+    c.c.body_b = pair.b;
+    prim_points(pair, c.c.other);
+    const Vec3 p = A.x[pair.p];
+    const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
+    std::array<float, 3> w{1.0f, 0.0f, 0.0f};
+    if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
+    const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
+    Vec3 n = p - q;
+    const float dist = length(n);
+    if (dist > 1e-7f) {
+        n = n / dist;
+    } else {
+        // On the surface itself: the face's normal (the way the face is wound).
+        n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
+        const float l = length(n);
+        n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+    }
+    const float gap = dist - pair.distance;
+    // Within reach of this tick only (the pair was found for the whole of it).
+    const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
+    if (gap > reach) return false;
+    c.c.weight[0] = w[0];
+    c.c.weight[1] = w[1];
+    c.c.weight[2] = w[2];
+    if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
+    c.c.normal = Vec3d(n);
+    c.c.separation = gap;
+    c.c.distance = pair.distance;
+    // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
+    // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
+    float inv = A.inv_mass[pair.p];
+    for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
+    if (!(inv > 0.0f)) return false;
+    c.inv_mass_sum = inv;
+    Vec3 v_rel = A.v[pair.p];
+    for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
+    c.bounce = -dot(v_rel, n);
+    return true;
+}
+
+void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                 std::span<const double> state) {
+    active_.clear();
+    rigid_active_.clear();
+    // Rigid points against triangles: the nearest triangle of each point (and the nearest
+    // across it), where the substep begins.
+    std::size_t rigid_group = 0;
+    for (std::size_t k = 0; k < rigid_pairs_.size(); ++k) {
+        const RigidPair& pair = rigid_pairs_[k];
+        const RigidBody& body = rigid[pair.rigid];
+        const SoftBody& B = bodies[pair.soft];
+        const RigidMotion m = rigid_motion(body, &state[pair.rigid * rigid::kStateSize]);
+        RigidActive c;
+        c.rigid = pair.rigid;
+        c.soft = pair.soft;
+        const bool sphere = body.shape == ShapeKind::Sphere;
+        c.local = sphere ? Vec3d{} : body.hull->vertices[pair.feature];
+        c.radius = sphere ? body.radius : 0.0;
+        for (int j = 0; j < 3; ++j) c.other[j] = surfaces_[pair.soft].triangles[3 * pair.tri + std::uint32_t(j)];
+        const Vec3d p = m.x + m.R * c.local;
+        const Vec3d x0(B.x[c.other[0]]), x1(B.x[c.other[1]]), x2(B.x[c.other[2]]);
+        const auto w = nearest_on_triangle(to_float(p), B.x[c.other[0]], B.x[c.other[1]], B.x[c.other[2]]);
+        const Vec3d q = x0 * double(w[0]) + x1 * double(w[1]) + x2 * double(w[2]);
+        // Over the face: its normal, on the point's side as the tick began (a point resting on
+        // the face, or pushed a little through it, is still pushed back out the way it came).
+        // Beyond an edge or a corner: from the nearest point to the point (a rounded edge).
+        Vec3d n = normalize(cross(x1 - x0, x2 - x0)) * double(pair.side);
+        double gap = dot(p - q, n);
+        const double dist = length(p - q);
+        // (More beside the edge than over the face: a point near the edge between two faces
+        // would otherwise be pushed sideways by its small offset across the edge.)
+        const double beside = length(p - q - n * gap);
+        if ((w[0] == 0.0f || w[1] == 0.0f || w[2] == 0.0f) && beside > std::abs(gap) && dist > 1e-4) {
+            n = (p - q) / dist;
+            gap = dist;
+        }
+        c.n = n;
+        c.separation = gap - c.radius - kRigidThickness;
+        for (int j = 0; j < 3; ++j) c.weight[j] = w[std::size_t(j)];
+        Vec3d v_rel = m.v + cross(m.omega, p - n * c.radius - m.x);
+        for (int j = 0; j < 3; ++j) v_rel -= Vec3d(B.v[c.other[j]]) * double(c.weight[j]);
+        c.bounce = -dot(v_rel, n);
+        const bool same = k > 0 && rigid_pairs_[k - 1].rigid == pair.rigid && rigid_pairs_[k - 1].feature == pair.feature &&
+                          rigid_pairs_[k - 1].soft == pair.soft;
+        if (!same || rigid_active_.size() == rigid_group) {
+            if (!same) rigid_group = rigid_active_.size();
+            rigid_active_.push_back(c);
+            continue;
+        }
+        RigidActive& best = rigid_active_[rigid_group];
+        if (dot(c.n, best.n) >= 0.0) {
+            if (c.separation < best.separation) best = c;
+        } else if (rigid_active_.size() == rigid_group + 1) {
+            rigid_active_.push_back(c);
+        } else if (c.separation < rigid_active_[rigid_group + 1].separation) {
+            rigid_active_[rigid_group + 1] = c;
+        }
+    }
+    // One contact per particle and surface: its nearest triangle (the pairs of one particle and
+    // body come one after another), and the nearest on the other side of the particle if there
+    // is one (a particle between two layers of a folded sheet). The other triangles within
+    // reach would only push along nearly the same normal, and cost the solver's passes. Found
+    // again every substep: a particle sliding fast crosses a small triangle in a tick.
+    std::size_t group = 0;
+    std::uint32_t group_a = ~0u, group_p = ~0u, group_b = ~0u;
+    for (std::uint32_t k = 0; k < pairs_.size(); ++k) {
+        const Pair& pair = pairs_[k];
+        Active c;
+        if (!make_contact(bodies, pair, c)) continue;
+        if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
+            active_.push_back(c);
+            continue;
+        }
+        if (pair.a != group_a || pair.p != group_p || pair.b != group_b) {
+            group = active_.size();
+            group_a = pair.a;
+            group_p = pair.p;
+            group_b = pair.b;
+        }
+        if (active_.size() == group) {
+            active_.push_back(c);
+            continue;
+        }
+        const bool opposite = dot(c.c.normal, active_[group].c.normal) < 0.0;
+        if (!opposite) {
+            if (c.c.separation < active_[group].c.separation) active_[group] = c;
+        } else if (active_.size() == group + 1) {
+            active_.push_back(c);
+        } else if (c.c.separation < active_[group + 1].c.separation) {
+            active_[group + 1] = c;
+        }
+    }
+}
+
+void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
+                         const Params& world, float h) {
+    touching_.clear();
+    if (active_.empty() && rigid_active_.empty()) return;
+    const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
+    // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
+    const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
+    const auto relative = [&](const Active& c) {
+        const SoftBody& A = bodies[c.c.body_a];
+        const SoftBody& B = bodies[c.c.body_b];
+        Vec3 v = A.v[c.c.particle];
+        for (int k = 0; k < 3; ++k) v -= B.v[c.c.other[k]] * c.c.weight[k];
+        return v;
+    };
+    const auto position = [&](const Active& c) {
+        const SoftBody& A = bodies[c.c.body_a];
+        const SoftBody& B = bodies[c.c.body_b];
+        Vec3 d = A.x[c.c.particle];
+        for (int k = 0; k < 3; ++k) d -= B.x[c.c.other[k]] * c.c.weight[k];
+        return d;
+    };
+    const auto apply = [&](const Active& c, const Vec3& J) {
+        SoftBody& A = bodies[c.c.body_a];
+        SoftBody& B = bodies[c.c.body_b];
+        const auto push = [&](std::uint32_t body, SoftBody& s, std::uint32_t i, const Vec3& impulse) {
+            const float im = s.inv_mass[i];
+            if (im == 0.0f) return;
+            const Vec3 dv = impulse * im;
+            s.v.add(i, dv);
+            dv_[body].add(i, dv);
+            if (!marked_[body][i]) {
+                marked_[body][i] = 1;
+                touched_[body].push_back(i);
+            }
+        };
+        push(c.c.body_a, A, c.c.particle, J);
+        for (int k = 0; k < 3; ++k) {
+            if (c.c.weight[k] != 0.0f) push(c.c.body_b, B, c.c.other[k], J * -c.c.weight[k]);
+        }
+    };
+    // Each contact's target: the normal velocity that brings its gap to zero at the step's end
+    // (the free step's gap over h, taken from its normal velocity; at most kPushSpeed apart
+    // where it overlapped already), or the bounce's -e v_n when it was hit faster than
+    // bounce_speed and meets the surface in this step.
+    for (Active& c : active_) {
+        const Vec3 n = to_float(c.c.normal);
+        const float gap_free = dot(position(c), n) - float(c.c.distance);
+        const float v_n = dot(relative(c), n);
+        c.target = std::min(v_n - gap_free / h, kPushSpeed);
+        if (gap_free < 0.0f && c.bounce > bounce_speed) c.target = std::max(c.target, e * c.bounce);
+        c.c.normal_impulse = 0.0;
+        c.friction = {};
+    }
+    // Rigid points: each body's motion after its free step (and its own contacts), the arms
+    // and targets as for particles, with the body's restitution and friction where it sets them.
+    motions_.resize(rigid.size());
+    dP_.assign(rigid.size(), {});
+    dL_.assign(rigid.size(), {});
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        if (!rigid_active_.empty()) motions_[r] = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
+    }
+    const auto rigid_relative = [&](const RigidActive& c) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        const Vec3d v = m.v + dP_[c.rigid] * body.inv_mass, w = m.omega + m.J_inv * dL_[c.rigid];
+        Vec3d u = v + cross(w, c.r);
+        for (int j = 0; j < 3; ++j) u -= Vec3d(bodies[c.soft].v[c.other[j]]) * double(c.weight[j]);
+        return u;
+    };
+    // Eq. 38's denominator along a unit direction u: the rigid side's 1/m + u . ((J^-1 (r x u)) x r),
+    // the triangle's sum w_i^2 / m_i.
+    const auto rigid_denominator = [&](const RigidActive& c, const Vec3d& u) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        double k = body.inv_mass + dot(u, cross(m.J_inv * cross(c.r, u), c.r));
+        for (int j = 0; j < 3; ++j) k += double(c.weight[j] * c.weight[j] * bodies[c.soft].inv_mass[c.other[j]]);
+        return k;
+    };
+    const auto rigid_apply = [&](const RigidActive& c, const Vec3d& J) {
+        if (!rigid[c.rigid].fixed) {
+            dP_[c.rigid] += J;
+            dL_[c.rigid] += cross(c.r, J);  // Eq. 37
+        }
+        SoftBody& B = bodies[c.soft];
+        for (int j = 0; j < 3; ++j) {
+            const std::uint32_t i = c.other[j];
+            const float im = B.inv_mass[i];
+            if (c.weight[j] == 0.0f || im == 0.0f) continue;
+            const Vec3 dv = to_float(J * -double(c.weight[j] * im));
+            B.v.add(i, dv);
+            dv_[c.soft].add(i, dv);
+            if (!marked_[c.soft][i]) {
+                marked_[c.soft][i] = 1;
+                touched_[c.soft].push_back(i);
+            }
+        }
+    };
+    for (RigidActive& c : rigid_active_) {
+        const RigidBody& body = rigid[c.rigid];
+        const RigidMotion& m = motions_[c.rigid];
+        const SoftBody& B = bodies[c.soft];
+        const Vec3d p = m.x + m.R * c.local;
+        c.r = p - c.n * c.radius - m.x;
+        Vec3d q;
+        for (int j = 0; j < 3; ++j) q += Vec3d(B.x[c.other[j]]) * double(c.weight[j]);
+        const double gap_free = dot(p - q, c.n) - c.radius - kRigidThickness;
+        const double v_n = dot(rigid_relative(c), c.n);
+        c.target = std::min(v_n - gap_free / double(h), double(kPushSpeed));
+        const double e_r = std::max(double(e), double(body.restitution.value_or(e)));
+        if (gap_free < 0.0 && c.bounce > double(bounce_speed)) c.target = std::max(c.target, e_r * c.bounce);
+        c.lambda = 0.0;
+        c.friction = {};
+    }
+    for (int pass = 0; pass < kPasses; ++pass) {
+        float largest = 0.0f;  // the largest velocity change of the pass
+        for (RigidActive& c : rigid_active_) {
+            const RigidBody& body = rigid[c.rigid];
+            const double k_n = rigid_denominator(c, c.n);
+            if (!(k_n > 0.0)) continue;
+            const double v_n = dot(rigid_relative(c), c.n);
+            const double lambda = std::max(0.0, c.lambda + (c.target - v_n) / k_n);
+            const double dl = lambda - c.lambda;
+            c.lambda = lambda;
+            if (dl != 0.0) rigid_apply(c, c.n * dl);
+            // Friction as for particles, along the slide, with its own denominator.
+            const double ms = body.friction ? double(*body.friction) : double(mu_s);
+            const double md = body.friction ? double(*body.friction) : double(mu_d);
+            const Vec3d v = rigid_relative(c);
+            const Vec3d v_t = v - c.n * dot(v, c.n);
+            const double slide = length(v_t);
+            Vec3d total = c.friction;
+            if (slide > 0.0) total -= v_t * (1.0 / rigid_denominator(c, v_t / slide));
+            const double size = length(total);
+            if (size > ms * lambda) total = size > 0.0 ? total * (md * lambda / size) : Vec3d{};
+            const Vec3d df = total - c.friction;
+            c.friction = total;
+            if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
+            largest = std::max(largest, float((std::abs(dl) + length(df)) * k_n));
+        }
+        for (Active& c : active_) {
+            const Vec3 n = to_float(c.c.normal);
+            // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
+            const float v_n = dot(relative(c), n);
+            const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
+            const float dl = lambda - float(c.c.normal_impulse);
+            c.c.normal_impulse = lambda;
+            if (dl != 0.0f) apply(c, n * dl);
+            // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
+            // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
+            const Vec3 v = relative(c);
+            const Vec3 v_t = v - n * dot(v, n);
+            Vec3 total = c.friction - v_t / c.inv_mass_sum;
+            const float size = length(total);
+            if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
+            const Vec3 df = total - c.friction;
+            c.friction = total;
+            if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
+            largest = std::max(largest, (std::abs(dl) + length(df)) * c.inv_mass_sum);
+        }
+        // Converged: no contact's velocity moved by more than kSettled in the whole pass.
+        if (largest < kSettled) break;
+    }
+    // A rigid body's momenta take the impulses; its centre and turn follow by h times the
+    // velocity and spin they changed (dv = dP / m, dw = J_world^-1 dL).
+    for (std::size_t r = 0; r < rigid.size(); ++r) {
+        if (rigid[r].fixed || (dP_[r] == Vec3d{} && dL_[r] == Vec3d{})) continue;
+        double* y = &state[r * rigid::kStateSize];
+        const Vec3d dv = dP_[r] * rigid[r].inv_mass, dw = motions_[r].J_inv * dL_[r];
+        for (int k = 0; k < 3; ++k) {
+            y[rigid::P + k] += dP_[r][k];
+            y[rigid::L + k] += dL_[r][k];
+            y[rigid::X + k] += double(h) * dv[k];
+        }
+        const double angle = length(dw) * double(h);
+        if (angle > 0.0) {
+            const Quat q = Quat::from_axis_angle(dw / length(dw), angle) * Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            y[rigid::Q] = q.w;
+            y[rigid::Q + 1] = q.x;
+            y[rigid::Q + 2] = q.y;
+            y[rigid::Q + 3] = q.z;
+        }
+    }
+    // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
+    const bool verlet = world.integrator == Integrator::Verlet;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        SoftBody& body = bodies[b];
+        for (std::uint32_t i : touched_[b]) {
+            const Vec3 dv = dv_[b][i];
+            body.x.add(i, dv * h);
+            if (verlet) body.verlet_step.add(i, dv * h);
+            dv_[b].set(i, {});
+            marked_[b][i] = 0;
+        }
+        touched_[b].clear();
+    }
+    for (const Active& c : active_) {
+        if (c.c.normal_impulse <= 0.0) continue;
+        SoftContact out = c.c;
+        out.tangent_impulse = length(c.friction);
+        out.impulse = c.c.normal * c.c.normal_impulse + Vec3d(c.friction);
+        touching_.push_back(out);
+    }
+}
+
+}  // namespace softbody

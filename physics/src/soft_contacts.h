@@ -1,0 +1,140 @@
+// Internal to the physics library: soft bodies against one another, and a body against itself
+// (self_collision): every particle of a soft body against the triangles of every other soft
+// body's surface, or, where a body has no faces (a point cloud), against its particles.
+//
+// The contact model: a point against a thick triangle. A particle stays at least the contact
+// distance d from the nearest point of the other surface (d = kSurfaceThickness for a
+// triangle, plus the particle's radius; a point cloud's particles are balls of half their
+// usual spacing). Speculative, as the rigid contacts are: the pairs are found once a tick
+// within how far their particles can move in it (a bounding-volume tree per body, refit every
+// tick: bvh.h), and each substep
+//   begin_substep  the nearest point and its normal where the substep begins (before the
+//                  integrator): n points from the surface toward the particle, and stays
+//                  fixed for the substep, so that a particle that would cross the surface in
+//                  this step is still pushed back the way it came. Of each particle's
+//                  triangles in reach it keeps the nearest (and the nearest across it, between
+//                  two layers of a sheet)
+//   solve          after the integrator's free step: impulses along n (Eq. 38 with the
+//                  particle as body 1, no rotation term; body 2 the surface point, whose
+//                  inverse mass is sum w_i^2 / m_i over its three particles) so that the gap
+//                  at the step's end is not below d; with restitution for impacts, and
+//                  Coulomb friction in impulse form (Eq. 24, 25: the tangential impulse that
+//                  would stop the slide when within mu_s lambda, else mu_d lambda against the
+//                  slide). The particle takes J, the surface's particles -w_i J: momentum is
+//                  kept exactly. Then the positions move on by h times the velocity the
+//                  impulses changed (and Verlet's step with them), as contact_solver.h does.
+// Why this and not a continuous test: with the normal fixed where the substep begins and the
+// gap measured where the free step ends, a particle is stopped at the surface however fast it
+// comes (it can only close the gap it had), which is what a continuous test buys, at the cost
+// of one nearest-point query per pair and substep. And a body resting on another rests: the
+// gap each substep's gravity closes is exactly what the impulse takes away (the target is a
+// gap of zero at the step's end), so nothing jitters and nothing creeps in.
+// What it does not catch: two edges crossing with no particle near the other's surface
+// (coarse meshes, edge on edge). Meshes with particles a few thicknesses apart do not show it.
+//
+// Rigid shapes against a soft body's triangles, the same way: a sphere's centre (a point with
+// the sphere's radius) and a hull's vertices against the triangles, found with the soft pairs,
+// solved with them, Eq. 38 with the rigid body's full denominator (its J_world^-1 and arm r);
+// the impulse changes its P and L, and its centre and turn follow by h times what they changed.
+// So a ball smaller than the gaps between a coarse sheet's particles lands on the sheet, and a
+// box's edge holds a soft face that overhangs it. (A soft particle against a rigid shape stays
+// particle_contacts.h's, solved by contact_solver.h.)
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <span>
+
+#include "bvh.h"
+#include "physics/contact.h"
+#include "physics/params.h"
+#include "physics/rigid_body.h"
+#include "physics/soft_body.h"
+
+namespace softbody {
+
+// m: how thick a soft body's surface is for contacts (the gap two touching bodies keep).
+inline constexpr float kSurfaceThickness = 0.005f;
+
+class SoftContacts {
+public:
+    // Each body's surface (its triangles on its simulated particles), or for a body without
+    // faces its particles' radius; the trees. Call whenever the bodies are built.
+    void build(const std::vector<SoftBody>& bodies);
+    // The pairs within reach over the tick of dt, found where the bodies are as it begins
+    // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
+    // particles may go in this one). Returns whether there are any.
+    // `rigid`, `state`: the rigid bodies and Listing 10's flat state as the tick begins.
+    bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+              const Params& world, double dt);
+    bool empty() const { return pairs_.empty(); }
+    // Before the integrator moves the particles: each pair's nearest point and normal.
+    void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state);
+    // After the integrator's free step of h (and the rigid contacts): the impulses, on the
+    // particles and on the rigid bodies' state.
+    void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const Params& world,
+               float h);
+    // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
+    const std::vector<SoftContact>& contacts() const { return touching_; }
+
+private:
+    struct Surface {
+        std::vector<std::uint32_t> triangles;  // three particles each
+        float radius = 0.0f;                   // of each particle: 0 with faces, else half the spacing
+        Bvh tree;                              // over the triangles, or over the particles without faces
+        std::vector<Box3f> boxes;
+    };
+    struct Pair {
+        std::uint32_t a, p, b, prim;  // particle p of body a against triangle (or particle) prim of body b
+        float distance;               // d
+        float found_at = 0.0f;        // the nearest point's distance where the tick began, m
+        float reach = 0.0f;           // how far the two sides can close in the tick, m
+        Vec3 away;                    // from the nearest point to the particle, where the tick began
+    };
+    struct Active {
+        SoftContact c;
+        float inv_mass_sum = 0.0f;    // Eq. 38's denominator: 1/m_p + sum w_i^2 / m_i
+        float target = 0.0f;          // the least normal velocity the step may end with, m/s
+        float bounce = 0.0f;          // closing speed as the substep began, m/s (> 0: closing)
+        Vec3 friction;                // accumulated tangential impulse
+    };
+    void prim_points(const Pair& pair, std::uint32_t out[3]) const;
+    bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
+
+    // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
+    struct RigidPair {
+        std::uint32_t rigid, feature, soft, tri;  // feature: the hull vertex (0 for a sphere)
+        float side;  // +1: the point was on the side the triangle faces (its winding) as the tick began, -1 behind
+    };
+    struct RigidActive {
+        std::uint32_t rigid = 0, soft = 0;
+        Vec3d local;                 // the point in body axes, from the centre of mass
+        double radius = 0.0;         // a sphere's; 0 for a vertex
+        std::uint32_t other[3] = {0, 0, 0};
+        float weight[3] = {0.0f, 0.0f, 0.0f};
+        Vec3d n;                     // out of the triangle toward the rigid body
+        double target = 0.0, bounce = 0.0, lambda = 0.0;
+        Vec3d friction;
+        Vec3d r;                     // arm from the centre of mass to the contact point, now
+        double separation = 0.0;
+    };
+    void find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                    const Params& world, double dt);
+    std::vector<RigidPair> rigid_pairs_;
+    std::vector<RigidActive> rigid_active_;
+    std::vector<Vec3d> dP_, dL_;     // per rigid body: what this substep's impulses added
+    std::vector<Box3f> rigid_box_;   // per rigid body, as the tick began, grown by its reach
+    std::vector<RigidMotion> motions_;  // per rigid body, after its free step (solve)
+
+    std::vector<Surface> surfaces_;
+    std::vector<Pair> pairs_;
+    std::vector<Active> active_;
+    std::vector<SoftContact> touching_;
+    std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
+    std::vector<Vec3Array> dv_;               // per body: the velocity the impulses added this substep
+    std::vector<std::vector<std::uint32_t>> touched_;  // per body: particles with a dv
+    std::vector<std::vector<std::uint8_t>> marked_;
+};
+
+}  // namespace softbody

@@ -1,0 +1,335 @@
+// Soft bodies that meet (soft_contacts.h): a particle against another body's triangles,
+// impulses by Eq. 38 with the opposite one shared by barycentric weight, restitution and
+// Coulomb friction (Eq. 24, 25); self contact; the scenes that show them.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "physics/scene_io.h"
+#include "test_support.h"
+
+namespace softbody::test {
+namespace {
+
+std::string scene_path(const std::string& name) { return std::string(SOFTBODY_ASSETS) + "/scenes/" + name; }
+
+World world_of_file(const std::string& name, int threads = 1) {
+    return World(make_world_def(load_scene(scene_path(name))), WorldOptions{threads});
+}
+
+World world_of(const std::string& json, int threads = 1) {
+    return World(make_world_def(parse_scene(json, "test.json")), WorldOptions{threads});
+}
+
+Vec3d centre(const World& world, std::size_t b) {
+    const SoftBody& body = world.soft_body(b);
+    Vec3d sum;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) sum += Vec3d(body.x[i]);
+    return sum / double(body.particle_count());
+}
+
+Vec3d mean_velocity(const World& world, std::size_t b) {
+    const SoftBody& body = world.soft_body(b);
+    Vec3d sum;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) sum += Vec3d(body.v[i]);
+    return sum / double(body.particle_count());
+}
+
+double fastest(const World& world, std::size_t b) {
+    const SoftBody& body = world.soft_body(b);
+    double most = 0.0;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) most = std::max(most, double(length(body.v[i])));
+    return most;
+}
+
+// The winding number of the closed surface of soft body b about point p (1 inside, 0 outside):
+// the solid angles of its triangles seen from p, summed, over 4 pi.
+double winding_number(const World& world, std::size_t b, const Vec3d& p) {
+    const SoftBody& body = world.soft_body(b);
+    double total = 0.0;
+    for (const auto& t : particle_triangles(body.mesh)) {
+        const Vec3d a = Vec3d(body.x[t[0]]) - p, c = Vec3d(body.x[t[1]]) - p, d = Vec3d(body.x[t[2]]) - p;
+        const double la = length(a), lc = length(c), ld = length(d);
+        const double num = dot(a, cross(c, d));
+        const double den = la * lc * ld + dot(a, c) * ld + dot(a, d) * lc + dot(c, d) * la;
+        total += 2.0 * std::atan2(num, den);
+    }
+    return total / (4.0 * kPi);
+}
+
+// The most any particle of body a is inside body b's surface (0: none is).
+double deepest_inside(const World& world, std::size_t a, std::size_t b) {
+    double most = 0.0;
+    const SoftBody& body = world.soft_body(a);
+    for (std::size_t i = 0; i < body.particle_count(); ++i) most = std::max(most, std::abs(winding_number(world, b, Vec3d(body.x[i]))));
+    return most;
+}
+
+// Two equal balls head-on, no gravity, no ground: the total momentum stays what it was to float
+// rounding (every impulse acts on one particle and, opposite, on three by weights summing to 1),
+// no particle of either is ever inside the other's surface, and they fly apart.
+TEST(SoftContact, HeadOnBallsKeepMomentumAndBounceApart) {
+    World world = world_of_file("soft_balls.json");
+    ASSERT_EQ(world.soft_body_count(), 2u);
+    const Vec3d p0 = world.momentum();
+    // Each ball carries 162 x 0.05 kg at 3 m/s: 24.3 kg m/s. Float velocities hold about 7
+    // digits; a few hundred impulses' rounding stays well under 1e-5 of it.
+    const double scale = 24.3;
+    bool touched = false;
+    for (int t = 0; t < 100; ++t) {
+        world.tick();
+        touched = touched || !world.soft_contacts().empty();
+        EXPECT_LT(length(world.momentum() - p0), 1e-5 * scale) << "tick " << t;
+        EXPECT_LT(deepest_inside(world, 0, 1), 0.5) << "tick " << t;
+        EXPECT_LT(deepest_inside(world, 1, 0), 0.5) << "tick " << t;
+    }
+    EXPECT_TRUE(touched);
+    // Apart, each back the way it came (restitution 0.5 and the bodies' own springs).
+    EXPECT_LT(mean_velocity(world, 0).x, -0.5);
+    EXPECT_GT(mean_velocity(world, 1).x, 0.5);
+    EXPECT_LT(centre(world, 0).x, -1.0);
+    EXPECT_GT(centre(world, 1).x, 1.0);
+    // Head-on along x: nothing sideways beyond rounding and the icosphere's own asymmetry.
+    EXPECT_LT(std::abs(mean_velocity(world, 0).y) + std::abs(mean_velocity(world, 0).z), 0.05);
+}
+
+std::string glancing(double mu) {
+    return "{\"gravity\": [0, 0, 0], \"ground\": false, \"drag_coefficient\": 0, \"restitution\": 0.3, \"static_friction\": " +
+           std::to_string(mu) + ", \"dynamic_friction\": " + std::to_string(mu) + ", \"soft_bodies\": ["
+           "{\"name\": \"striker\", \"mesh\": \"ball:2\", \"scale\": 1, \"up_axis\": \"z\", \"particle_mass\": 0.05, \"stiffness\": 60,"
+           " \"damping\": 0.2, \"drag_coefficient\": 0, \"position\": [-1.2, 0.5, 1], \"initial_velocity\": [4, 0, 0]},"
+           "{\"name\": \"struck\", \"mesh\": \"ball:2\", \"scale\": 1, \"up_axis\": \"z\", \"particle_mass\": 0.05, \"stiffness\": 60,"
+           " \"damping\": 0.2, \"drag_coefficient\": 0, \"position\": [0, 0, 1]}]}";
+}
+
+// Spin of body b about its centre: sum m (x - c) x v.
+Vec3d spin(const World& world, std::size_t b) {
+    const SoftBody& body = world.soft_body(b);
+    const Vec3d c = centre(world, b);
+    Vec3d L;
+    for (std::size_t i = 0; i < body.particle_count(); ++i) L += cross(Vec3d(body.x[i]) - c, Vec3d(body.v[i])) * double(body.mass);
+    return L;
+}
+
+// A glancing hit: the striker passes half a diameter off centre (+y). The struck ball is pushed
+// forward (+x) and away from the striker's side (-y); momentum is kept; friction drags the
+// struck ball's near side forward, turning it about -z (the striker's side moves with +x).
+TEST(SoftContact, GlancingHitPushesForwardAndSidewaysKeepingMomentum) {
+    World world = world_of(glancing(0.6));
+    World frictionless = world_of(glancing(0.0));
+    const Vec3d p0 = world.momentum();
+    for (int t = 0; t < 60; ++t) {
+        world.tick();
+        frictionless.tick();
+        EXPECT_LT(length(world.momentum() - p0), 1e-5 * 32.4) << "tick " << t;  // 162 x 0.05 kg x 4 m/s
+    }
+    const Vec3d v = mean_velocity(world, 1);
+    EXPECT_GT(v.x, 0.3);
+    EXPECT_LT(v.y, -0.1);
+    EXPECT_LT(deepest_inside(world, 0, 1), 0.5);
+    // Friction's torque: the struck ball turns about -z with friction, and more than without.
+    EXPECT_LT(spin(world, 1).z, 0.0);
+    EXPECT_LT(spin(world, 1).z, spin(frictionless, 1).z - 0.01);
+}
+
+// A soft cube dropped onto a soft cube on the ground: on top of it and at rest within 5 s, and
+// staying there (no jitter, no sinking in).
+TEST(SoftContact, CubeDroppedOnCubeComesToRestOnTop) {
+    World world = world_of(
+        "{\"auto_substeps\": true, \"restitution\": 0.2, \"soft_bodies\": ["
+        "{\"name\": \"below\", \"mesh\": \"cube:4\", \"scale\": 0.5, \"up_axis\": \"z\", \"particle_mass\": 0.05, \"stiffness\": 60,"
+        " \"damping\": 1.5, \"position\": [0, 0, 0.25]},"
+        "{\"name\": \"above\", \"mesh\": \"cube:4\", \"scale\": 0.5, \"up_axis\": \"z\", \"particle_mass\": 0.05, \"stiffness\": 60,"
+        " \"damping\": 1.5, \"position\": [0.04, -0.03, 1.0]}]}");
+    world.run(250);  // 5 s
+    const Vec3d rest = centre(world, 1);
+    // On top: its centre a cube's height (0.5 m, less the squash under load, plus the 5 mm
+    // contact thickness) above the lower cube's, and over it.
+    EXPECT_NEAR(rest.z - centre(world, 0).z, 0.5, 0.02);
+    EXPECT_NEAR(rest.x, 0.04, 0.03);
+    EXPECT_NEAR(rest.y, -0.03, 0.03);
+    // At rest: no particle faster than 1 cm/s, and two seconds on it has moved under a millimetre.
+    EXPECT_LT(fastest(world, 1), 0.01);
+    EXPECT_LT(fastest(world, 0), 0.02);  // a grounded particle keeps the last substep's g h (as alone on the ground)
+    world.run(100);
+    EXPECT_LT(length(centre(world, 1) - rest), 1e-3);
+    EXPECT_LT(fastest(world, 1), 0.01);
+    EXPECT_LT(deepest_inside(world, 1, 0), 0.5);
+    EXPECT_LT(deepest_inside(world, 0, 1), 0.5);
+}
+
+// The stack of three in soft_stack.json stands: each cube on the one below, at rest.
+TEST(SoftContact, StackOfThreeStands) {
+    World world = world_of_file("soft_stack.json");
+    world.run(400);
+    const double z0 = centre(world, 0).z, z1 = centre(world, 1).z, z2 = centre(world, 2).z;
+    EXPECT_NEAR(z1 - z0, 0.5, 0.02);
+    EXPECT_NEAR(z2 - z1, 0.5, 0.02);
+    for (std::size_t b = 1; b < 3; ++b) EXPECT_LT(fastest(world, b), 0.01) << b;
+}
+
+// Whether particle p has crossed the sheet's triangle t between two moments: the sign of its
+// height over the triangle's plane changed while its foot fell inside the triangle both times
+// and it was near (within 5 cm) both times.
+struct SideRecord {
+    std::vector<signed char> side;  // per (particle, triangle): -1, +1, or 0 (not near or not over it)
+};
+
+int crossings(const World& world, std::size_t b, SideRecord& record) {
+    const SoftBody& body = world.soft_body(b);
+    const auto tris = particle_triangles(body.mesh);
+    const std::size_t n = body.particle_count();
+    if (record.side.empty()) record.side.assign(n * tris.size(), 0);
+    int crossed = 0;
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+        const Vec3d a(body.x[tris[t][0]]), c(body.x[tris[t][1]]), d(body.x[tris[t][2]]);
+        const Vec3d normal = cross(c - a, d - a);
+        const double area2 = dot(normal, normal);
+        if (!(area2 > 0.0)) continue;
+        for (std::size_t p = 0; p < n; ++p) {
+            if (p == tris[t][0] || p == tris[t][1] || p == tris[t][2]) continue;
+            const Vec3d q = Vec3d(body.x[p]) - a;
+            const double height = dot(q, normal) / std::sqrt(area2);
+            // The foot's barycentric coordinates: foot = beta (c - a) + gamma (d - a).
+            const Vec3d foot = q - normal * (dot(q, normal) / area2);
+            const double beta = dot(cross(foot, d - a), normal) / area2, gamma = dot(cross(c - a, foot), normal) / area2;
+            const bool over = beta >= 0.0 && gamma >= 0.0 && beta + gamma <= 1.0 && std::abs(height) < 0.05;
+            signed char& was = record.side[p * tris.size() + t];
+            const signed char now = over ? (height >= 0.0 ? 1 : -1) : 0;
+            if (was != 0 && now != 0 && was != now) ++crossed;
+            was = now;
+        }
+    }
+    return crossed;
+}
+
+// The sheet falling over the bar, its halves together: with self contact no particle passes
+// through the sheet; without it, the same fall lets some through (the check can fail).
+TEST(SoftContact, FoldedSheetNeverCrossesItself) {
+    Scene scene = load_scene(scene_path("fold.json"));
+    ASSERT_TRUE(scene.soft_bodies.at(0).params.self_collision);
+    World with(make_world_def(scene));
+    scene.soft_bodies[0].params.self_collision = false;
+    World without(make_world_def(scene));
+    SideRecord r_with, r_without;
+    int crossed_with = 0, crossed_without = 0;
+    bool touched = false;
+    for (int t = 0; t < 200; ++t) {
+        with.tick();
+        without.tick();
+        touched = touched || !with.soft_contacts().empty();
+        crossed_with += crossings(with, 0, r_with);
+        crossed_without += crossings(without, 0, r_without);
+    }
+    EXPECT_TRUE(touched);
+    EXPECT_EQ(crossed_with, 0);
+    EXPECT_GT(crossed_without, 0);
+}
+
+// Point clouds meet particle against particle with a radius: two lattices thrown together
+// bounce apart, momentum kept, no two particles of different clouds closer than their radii.
+TEST(SoftContact, PointCloudsMeetParticleAgainstParticle) {
+    World world = world_of(
+        "{\"gravity\": [0, 0, 0], \"ground\": false, \"drag_coefficient\": 0, \"restitution\": 0.5, \"soft_bodies\": ["
+        "{\"name\": \"a\", \"mesh\": \"lattice:4\", \"scale\": 0.6, \"up_axis\": \"z\", \"particle_mass\": 0.1, \"stiffness\": 20,"
+        " \"damping\": 0.1, \"drag_coefficient\": 0, \"position\": [-0.5, 0.05, 0], \"initial_velocity\": [2, 0, 0]},"
+        "{\"name\": \"b\", \"mesh\": \"lattice:4\", \"scale\": 0.6, \"up_axis\": \"z\", \"particle_mass\": 0.1, \"stiffness\": 20,"
+        " \"damping\": 0.1, \"drag_coefficient\": 0, \"position\": [0.5, -0.05, 0], \"initial_velocity\": [-2, 0, 0]}]}");
+    const Vec3d p0 = world.momentum();
+    double closest = 1e9;
+    for (int t = 0; t < 60; ++t) {
+        world.tick();
+        const SoftBody &a = world.soft_body(0), &b = world.soft_body(1);
+        for (std::size_t i = 0; i < a.particle_count(); ++i) {
+            for (std::size_t j = 0; j < b.particle_count(); ++j) closest = std::min(closest, double(length(a.x[i] - b.x[j])));
+        }
+        EXPECT_LT(length(world.momentum() - p0), 1e-5 * 12.8);
+    }
+    // Lattice pitch 0.2 m: each particle a ball of radius 0.1 m; two of them stop at 0.2 m
+    // (allow the last substep's overlap, a few millimetres).
+    EXPECT_GT(closest, 0.19);
+    EXPECT_LT(mean_velocity(world, 0).x, 0.0);
+    EXPECT_GT(mean_velocity(world, 1).x, 0.0);
+}
+
+// The pebble on the net: a 8 cm ball onto a sheet whose particles are 0.5 m apart. Only the
+// sheet's triangles can catch it (it fits between any four particles): caught, it never gets
+// near the ground, and comes to rest on the sheet, a radius (and the 2 mm contact gap) above it.
+TEST(SoftContact, PebbleIsCaughtByTheNetAndRests) {
+    World world = world_of_file("pebble_on_net.json");
+    ASSERT_EQ(world.rigid_body_count(), 1u);
+    double lowest = 1e9;
+    for (int t = 0; t < 650; ++t) {
+        world.tick();
+        lowest = std::min(lowest, world.rigid_motion(0).x.z);
+    }
+    EXPECT_GT(lowest, 0.5);  // the sheet hangs about a metre up; the ground is at 0
+    const RigidMotion m = world.rigid_motion(0);
+    EXPECT_LT(length(m.v), 0.01);
+    // On the sheet: over its lowest particle by about a radius, and under the pinned corners.
+    const SoftBody& net = world.soft_body(0);
+    float sheet_low = 1e9f;
+    for (std::size_t i = 0; i < net.particle_count(); ++i) sheet_low = std::min(sheet_low, net.x.z[i]);
+    EXPECT_GT(m.x.z, double(sheet_low));
+    EXPECT_LT(m.x.z, double(sheet_low) + 0.15);
+    EXPECT_LT(m.x.z, 1.5);
+    const Vec3d rest = m.x;
+    world.run(100);
+    EXPECT_LT(length(world.rigid_motion(0).x - rest), 2e-3);
+}
+
+// The same state at 1, 2 and 3 threads for each scene of bodies that meet.
+TEST(SoftContact, SameHashAtAnyThreadCount) {
+    for (const char* name : {"soft_balls.json", "soft_stack.json", "fold.json", "pebble_on_net.json"}) {
+        std::uint64_t hashes[3] = {};
+        for (int threads = 1; threads <= 3; ++threads) {
+            World world = world_of_file(name, threads);
+            world.run(120);
+            hashes[threads - 1] = world.state_hash();
+        }
+        EXPECT_EQ(hashes[0], hashes[1]) << name;
+        EXPECT_EQ(hashes[0], hashes[2]) << name;
+    }
+}
+
+// position puts the centre of mass there (init_height unused); angular_velocity spins the body
+// about it (v = w x r, so L = J w about the centre and no net momentum from the spin).
+TEST(SoftBodyPlacement, PositionAndAngularVelocity) {
+    World world = world_of(
+        "{\"gravity\": [0, 0, 0], \"ground\": false, \"soft_bodies\": [{\"name\": \"a\", \"mesh\": \"ball:1\", \"scale\": 1,"
+        " \"up_axis\": \"z\", \"position\": [1, -2, 3], \"angular_velocity\": [0, 0, 2], \"initial_velocity\": [0.5, 0, 0]}]}");
+    EXPECT_NEAR(centre(world, 0).x, 1.0, 1e-5);
+    EXPECT_NEAR(centre(world, 0).y, -2.0, 1e-5);
+    EXPECT_NEAR(centre(world, 0).z, 3.0, 1e-5);
+    EXPECT_NEAR(mean_velocity(world, 0).x, 0.5, 1e-5);
+    EXPECT_NEAR(mean_velocity(world, 0).y, 0.0, 1e-5);
+    const SoftBody& body = world.soft_body(0);
+    for (std::size_t i = 0; i < body.particle_count(); ++i) {
+        const Vec3 r = body.x[i] - to_float(centre(world, 0));
+        const Vec3 want = Vec3{0.5f, 0.0f, 0.0f} + cross(Vec3{0.0f, 0.0f, 2.0f}, r);
+        EXPECT_LT(length(body.v[i] - want), 1e-5f);
+    }
+    EXPECT_GT(spin(world, 0).z, 0.0);
+}
+
+TEST(SoftBodyPlacement, BadValuesAreRefusedWithBodyAndKey) {
+    const auto scene = [](const std::string& keys) {
+        return "{\"soft_bodies\": [{\"name\": \"jelly\", \"mesh\": \"ball:1\", " + keys + "}]}";
+    };
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"position\": [0, 0]"), "s.json"), "'jelly'", "'position'");
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"position\": [0, 0, 1e9]"), "s.json"), "'jelly'", "'position'");
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"angular_velocity\": \"fast\""), "s.json"), "'jelly'", "'angular_velocity'");
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"color\": [1, 0.5, 2]"), "s.json"), "'jelly'", "'color'");
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"self_collision\": 1"), "s.json"), "'jelly'", "'self_collision'");
+    EXPECT_REFUSED_NAMING(parse_scene(scene("\"position\": [0, 0, 1], \"init_height\": 2"), "s.json"), "'jelly'", "'position'",
+                          "'init_height'");
+    // A saved scene with a position keeps it (and leaves init_height out, which it replaces).
+    const Scene read = parse_scene(scene("\"position\": [0, 0, 1], \"color\": [1, 0.5, 0]"), "s.json");
+    const Scene again = parse_scene(scene_to_json(read), "s.json");
+    ASSERT_EQ(again.soft_bodies.size(), 1u);
+    EXPECT_EQ(again.soft_bodies[0].params.position, read.soft_bodies[0].params.position);
+    EXPECT_EQ(again.soft_bodies[0].params.color, read.soft_bodies[0].params.color);
+}
+
+}  // namespace
+}  // namespace softbody::test
