@@ -354,11 +354,14 @@ void Demo::set_key(const std::string& key, const std::string& value) {
             edit_rigid_body(b, def);
             return;
         }
-        // A world key or the flat soft body's (as "stiffness" or "body.stiffness").
+        // A world key or the flat soft body's (as "stiffness" or "body.stiffness"), or another
+        // soft body's ("jelly.stiffness"), each through its body's own path.
         Scene scene = this->scene();
         set_scene_key(scene, key, value);
-        if (!(scene.soft_bodies == scene_.soft_bodies)) {
-            throw InputError("'" + key + "': the soft bodies of \"soft_bodies\" take their keys from the scene file");
+        for (std::size_t k = 0; k < scene.soft_bodies.size(); ++k) {
+            if (scene.soft_bodies[k] == scene_.soft_bodies[k]) continue;
+            edit_body(k + (scene_.params.mesh.empty() ? 0 : 1), scene.soft_bodies[k].params);
+            return;
         }
         edit(scene.params);
     } catch (const std::exception& e) {

@@ -51,6 +51,37 @@ std::array<float, 3> nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec
     return {1.0f - v - w, v, w};
 }
 
+// A hull's points that meet soft triangles: its vertices, then points along its edges every
+// kEdgeSpacing at most (a box's edge under a soft face that overhangs it holds the face where
+// no vertex is). Feature k < vertices is vertex k; past them, edge samples in the hull's order.
+constexpr double kEdgeSpacing = 0.1;  // m
+constexpr std::uint32_t kMostEdgeSamples = 32;
+
+std::uint32_t edge_samples(const ConvexHull& hull, const std::array<std::uint32_t, 2>& edge) {
+    const double l = length(hull.vertices[edge[1]] - hull.vertices[edge[0]]);
+    return std::min(kMostEdgeSamples, std::uint32_t(std::ceil(l / kEdgeSpacing)) - 1);
+}
+
+std::uint32_t hull_feature_count(const ConvexHull& hull) {
+    std::uint32_t count = std::uint32_t(hull.vertices.size());
+    for (const auto& e : hull.edges) count += edge_samples(hull, e);
+    return count;
+}
+
+Vec3d hull_feature(const ConvexHull& hull, std::uint32_t feature) {
+    if (feature < hull.vertices.size()) return hull.vertices[feature];
+    feature -= std::uint32_t(hull.vertices.size());
+    for (const auto& e : hull.edges) {
+        const std::uint32_t n = edge_samples(hull, e);
+        if (feature < n) {
+            const double t = double(feature + 1) / double(n + 1);
+            return hull.vertices[e[0]] * (1.0 - t) + hull.vertices[e[1]] * t;
+        }
+        feature -= n;
+    }
+    return {};
+}
+
 Box3f box_of(const Vec3& p, float grow) { return {p - Vec3{grow, grow, grow}, p + Vec3{grow, grow, grow}}; }
 
 // Half the median distance from a particle to its nearest neighbour: the radius of a point
@@ -90,6 +121,7 @@ float distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Ve
 
 void SoftContacts::build(const std::vector<SoftBody>& bodies) {
     surfaces_.assign(bodies.size(), {});
+    rigid_features_.clear();
     reach_.assign(bodies.size(), {});
     dv_.assign(bodies.size(), {});
     touched_.assign(bodies.size(), {});
@@ -256,43 +288,49 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             }
         }
     }
-    // Rigid shapes against the triangles: a sphere's centre, or each hull vertex, against every
-    // triangle whose box its body's box meets, kept when within reach by the nearest point.
+    // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
+    // vertices and points along its edges, hull_feature), against the triangles whose boxes
+    // its box meets (a query of the soft body's tree per point), kept when within reach by the
+    // nearest point. One point's triangles come together (begin_substep keeps its nearest).
+    if (rigid_features_.size() != rigid.size()) rigid_features_.assign(rigid.size(), {});
     for (std::size_t r = 0; r < rigid.size(); ++r) {
         const RigidBody& body = rigid[r];
         const RigidMotion m = rigid_motion(body, &state[r * rigid::kStateSize]);
         const double margin = body.fixed ? 0.0 : speculative_margin(body, m, dt, double(g));
-        const std::size_t first = rigid_pairs_.size();
+        std::vector<Vec3d>& features = rigid_features_[r];
         for (std::size_t b = 0; b < bodies.size(); ++b) {
             if (!meets_rigid(r, b)) continue;
+            if (features.empty()) {  // made once: a rigid body's shape never changes
+                if (body.hull) {
+                    const std::uint32_t count = hull_feature_count(*body.hull);
+                    for (std::uint32_t k = 0; k < count; ++k) features.push_back(hull_feature(*body.hull, k));
+                } else {
+                    features.push_back({});
+                }
+            }
             const SoftBody& B = bodies[b];
             const Surface& s = surfaces_[b];
-            s.tree.query(rigid_box_[r], [&](std::uint32_t t) {
-                const std::uint32_t* v = &s.triangles[3 * t];
-                if (body.fixed && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
-                const double reach = margin + double(std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]})) + kRigidThickness;
-                const Vec3 face = cross(B.x[v[1]] - B.x[v[0]], B.x[v[2]] - B.x[v[0]]);
-                // Which side of the triangle the point is on (on it, within rounding: the side
-                // the triangle faces, outward for a closed body wound as files wind them).
-                const auto add = [&](const Vec3d& local, double radius, std::uint32_t feature) {
-                    const Vec3 p = to_float(m.x + m.R * local);
+            const double radius = body.hull ? 0.0 : body.radius;
+            const float grow = float(radius + margin + kRigidThickness);
+            for (std::uint32_t k = 0; k < features.size(); ++k) {
+                const Vec3 p = to_float(m.x + m.R * features[k]);
+                const Box3f point = box_of(p, grow);
+                if (!point.overlaps(whole[b])) continue;
+                s.tree.query(point, [&](std::uint32_t t) {
+                    const std::uint32_t* v = &s.triangles[3 * t];
+                    if (body.fixed && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+                    const double reach = margin + double(std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]})) + kRigidThickness;
                     const auto w = nearest_on_triangle(p, B.x[v[0]], B.x[v[1]], B.x[v[2]]);
                     const Vec3 away = p - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
                     if (double(length(away)) - radius > reach) return;
+                    // Which side of the triangle the point is on (on it, within rounding: the
+                    // side the triangle faces, outward for a closed body wound as files wind them).
+                    const Vec3 face = cross(B.x[v[1]] - B.x[v[0]], B.x[v[2]] - B.x[v[0]]);
                     const float side = dot(away, face) < -1e-6f * length(face) ? -1.0f : 1.0f;
-                    rigid_pairs_.push_back({std::uint32_t(r), feature, std::uint32_t(b), t, side});
-                };
-                if (body.shape == ShapeKind::Sphere) {
-                    add({}, body.radius, 0);
-                    return;
-                }
-                for (std::uint32_t k = 0; k < body.hull->vertices.size(); ++k) add(body.hull->vertices[k], 0.0, k);
-            });
+                    rigid_pairs_.push_back({std::uint32_t(r), k, std::uint32_t(b), t, side, features[k]});
+                });
+            }
         }
-        // One point's triangles together (begin_substep keeps its nearest), in a fixed order.
-        std::stable_sort(rigid_pairs_.begin() + std::ptrdiff_t(first), rigid_pairs_.end(), [](const RigidPair& x, const RigidPair& y) {
-            return x.soft < y.soft || (x.soft == y.soft && x.feature < y.feature);
-        });
     }
     return !pairs_.empty() || !rigid_pairs_.empty();
 }
@@ -360,7 +398,7 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
         c.rigid = pair.rigid;
         c.soft = pair.soft;
         const bool sphere = body.shape == ShapeKind::Sphere;
-        c.local = sphere ? Vec3d{} : body.hull->vertices[pair.feature];
+        c.local = pair.local;
         c.radius = sphere ? body.radius : 0.0;
         for (int j = 0; j < 3; ++j) c.other[j] = surfaces_[pair.soft].triangles[3 * pair.tri + std::uint32_t(j)];
         const Vec3d p = m.x + m.R * c.local;

@@ -33,7 +33,8 @@
 // (coarse meshes, edge on edge). Meshes with particles a few thicknesses apart do not show it.
 //
 // Rigid shapes against a soft body's triangles, the same way: a sphere's centre (a point with
-// the sphere's radius) and a hull's vertices against the triangles, found with the soft pairs,
+// the sphere's radius) and a hull's vertices and points along its edges (every 10 cm) against
+// the triangles, found with the soft pairs,
 // solved with them, Eq. 38 with the rigid body's full denominator (its J_world^-1 and arm r);
 // the impulse changes its P and L, and its centre and turn follow by h times what they changed.
 // So a ball smaller than the gaps between a coarse sheet's particles lands on the sheet, and a
@@ -106,6 +107,7 @@ private:
     struct RigidPair {
         std::uint32_t rigid, feature, soft, tri;  // feature: the hull vertex (0 for a sphere)
         float side;  // +1: the point was on the side the triangle faces (its winding) as the tick began, -1 behind
+        Vec3d local; // the point in body axes, from the centre of mass
     };
     struct RigidActive {
         std::uint32_t rigid = 0, soft = 0;
@@ -126,6 +128,7 @@ private:
     std::vector<Vec3d> dP_, dL_;     // per rigid body: what this substep's impulses added
     std::vector<Box3f> rigid_box_;   // per rigid body, as the tick began, grown by its reach
     std::vector<RigidMotion> motions_;  // per rigid body, after its free step (solve)
+    std::vector<std::vector<Vec3d>> rigid_features_;  // per rigid body: its points, body axes (hull_feature)
 
     std::vector<Surface> surfaces_;
     std::vector<Pair> pairs_;

@@ -278,6 +278,24 @@ TEST(SoftContact, PebbleIsCaughtByTheNetAndRests) {
     EXPECT_LT(length(world.rigid_motion(0).x - rest), 2e-3);
 }
 
+// A soft cube dropped 2 cm off centre (in x and y) onto a fixed box of its own size: three of
+// its bottom corners overhang the box, 96% of its bottom face is over it. Only its particles
+// meeting the box, it tipped and slid 1.2 m away; the box's top edges (points along them)
+// against the cube's bottom triangles hold it on the box.
+TEST(SoftContact, CubeOffCentreStaysOnABoxOfItsSize) {
+    World world = world_of(
+        "{\"auto_substeps\": true, \"soft_bodies\": [{\"name\": \"cube\", \"mesh\": \"" + std::string(SOFTBODY_ASSETS) +
+        "/meshes/cube.obj\", \"scale\": 1, \"up_axis\": \"z\", \"particle_mass\": 0.5, \"stiffness\": 150, \"damping\": 1,"
+        " \"position\": [0.02, 0.02, 1.6]}], \"rigid_bodies\": [{\"name\": \"box\", \"shape\": \"box\", \"size\": [1, 1, 1],"
+        " \"position\": [0, 0, 0.5], \"fixed\": true}]}");
+    world.run(250);
+    const Vec3d c = centre(world, 0);
+    EXPECT_NEAR(c.x, 0.02, 0.05);
+    EXPECT_NEAR(c.y, 0.02, 0.05);
+    EXPECT_NEAR(c.z, 1.5, 0.06);
+    EXPECT_LT(fastest(world, 0), 0.01);
+}
+
 // The same state at 1, 2 and 3 threads for each scene of bodies that meet.
 TEST(SoftContact, SameHashAtAnyThreadCount) {
     for (const char* name : {"soft_balls.json", "soft_stack.json", "fold.json", "pebble_on_net.json"}) {
