@@ -123,9 +123,7 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
     surfaces_.assign(bodies.size(), {});
     rigid_features_.clear();
     reach_.assign(bodies.size(), {});
-    dv_.assign(bodies.size(), {});
-    touched_.assign(bodies.size(), {});
-    marked_.assign(bodies.size(), {});
+    slot_.assign(bodies.size(), {});
     pairs_.clear();
     active_.clear();
     touching_.clear();
@@ -140,8 +138,7 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
             s.triangles.insert(s.triangles.end(), t.begin(), t.end());
         }
         s.radius = s.triangles.empty() ? cloud_radius(body.rest) : 0.0f;
-        dv_[b].resize(body.particle_count());
-        marked_[b].assign(body.particle_count(), 0);
+        slot_[b].assign(body.particle_count(), kNoSlot);
     }
 }
 
@@ -156,8 +153,64 @@ void SoftContacts::prim_points(const Pair& pair, std::uint32_t out[3]) const {
     out[2] = s.triangles[3 * pair.prim + 2];
 }
 
+// Particle p of body a against body b's triangles (or particles) within reach: appended to out,
+// the nearest point first kept as found, then only the pairs that can matter (find says which).
+void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p,
+                                 const Box3f& whole_b, std::vector<Pair>& out) const {
+    const SoftBody& A = bodies[a];
+    const SoftBody& B = bodies[b];
+    const Surface& s = surfaces_[b];
+    const bool faces = !s.triangles.empty();
+    const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
+    if (!whole_b.overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) return;
+    const bool fixed_p = A.inv_mass[p] == 0.0f;
+    const std::size_t group = out.size();
+    float nearest = INFINITY;
+    Vec3 nearest_away;
+    s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
+        Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
+        std::uint32_t v[3];
+        prim_points(pair, v);
+        if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
+        if (a == b) {
+            // Self contact: never a triangle the particle is a corner of, nor one it was
+            // within reach of at rest (the same stretch of surface).
+            if (v[0] == p || v[1] == p || v[2] == p) return;
+            if (distance_to_triangle(A.rest[p], A.rest[v[0]], A.rest[v[1]], A.rest[v[2]]) < 2.0f * d) return;
+        }
+        // Within reach by the nearest point, not just by the boxes: a particle's box meets a
+        // dozen small triangles of which one or two can matter.
+        if (faces) {
+            const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
+            const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+            const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
+            const float distance = length(away);
+            if (distance > d + r) return;
+            if (distance < nearest) {
+                nearest = distance;
+                nearest_away = away;
+            }
+            pair.found_at = distance;
+            pair.reach = r;
+            pair.away = away;
+        }
+        out.push_back(pair);
+    });
+    // A particle's contact with a surface is its nearest point, and the nearest on its other
+    // side (begin_substep): of its triangles, only those that can come nearer in the tick than
+    // the nearest one can go away, and those across it.
+    if (faces && out.size() > group + 1) {
+        std::size_t kept = group;
+        for (std::size_t k = group; k < out.size(); ++k) {
+            const Pair& q = out[k];
+            if (q.found_at - q.reach <= nearest + q.reach || dot(q.away, nearest_away) < 0.0f) out[kept++] = q;
+        }
+        out.resize(kept);
+    }
+}
+
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-                        const Params& world, double dt) {
+                        const Params& world, double dt, ThreadPool& pool) {
     pairs_.clear();
     rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
@@ -228,64 +281,26 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         if (s.tree.empty()) s.tree.build(s.boxes);
         else s.tree.refit(s.boxes);
     }
+    // Each particle's pairs with a body it can meet, its particles in chunks spread over the
+    // threads, each chunk's pairs in a list of its own, joined in particle order afterwards: the
+    // pairs (and so every contact and impulse) come in the same order at any thread count.
     for (std::size_t a = 0; a < bodies.size(); ++a) {
-        const SoftBody& A = bodies[a];
         for (std::size_t b = 0; b < bodies.size(); ++b) {
             if (!meets(a, b)) continue;
-            const SoftBody& B = bodies[b];
-            const Surface& s = surfaces_[b];
-            const bool faces = !s.triangles.empty();
             // Two point clouds meet once, ball against ball; a body with faces meets a point
             // cloud particle against particle as well as the cloud's particles against its faces.
-            if (!faces && surfaces_[a].triangles.empty() && b < a) continue;
-            const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
-            for (std::uint32_t p = 0; p < A.particle_count(); ++p) {
-                if (!whole[b].overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) continue;
-                const bool fixed_p = A.inv_mass[p] == 0.0f;
-                const std::size_t group = pairs_.size();
-                float nearest = INFINITY;
-                Vec3 nearest_away;
-                s.tree.query(box_of(A.x[p], reach_[a][p] + d), [&](std::uint32_t prim) {
-                    Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
-                    std::uint32_t v[3];
-                    prim_points(pair, v);
-                    if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
-                    if (a == b) {
-                        // Self contact: never a triangle the particle is a corner of, nor one
-                        // it was within reach of at rest (the same stretch of surface).
-                        if (v[0] == p || v[1] == p || v[2] == p) return;
-                        if (distance_to_triangle(A.rest[p], A.rest[v[0]], A.rest[v[1]], A.rest[v[2]]) < 2.0f * d) return;
-                    }
-                    // Within reach by the nearest point, not just by the boxes: a particle's box
-                    // meets a dozen small triangles of which one or two can matter.
-                    if (faces) {
-                        const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
-                        const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
-                        const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
-                        const float distance = length(away);
-                        if (distance > d + r) return;
-                        if (distance < nearest) {
-                            nearest = distance;
-                            nearest_away = away;
-                        }
-                        pair.found_at = distance;
-                        pair.reach = r;
-                        pair.away = away;
-                    }
-                    pairs_.push_back(pair);
-                });
-                // A particle's contact with a surface is its nearest point, and the nearest on
-                // its other side (begin_substep): of its triangles, only those that can come
-                // nearer in the tick than the nearest one can go away, and those across it.
-                if (faces && pairs_.size() > group + 1) {
-                    std::size_t kept = group;
-                    for (std::size_t k = group; k < pairs_.size(); ++k) {
-                        const Pair& q = pairs_[k];
-                        if (q.found_at - q.reach <= nearest + q.reach || dot(q.away, nearest_away) < 0.0f) pairs_[kept++] = q;
-                    }
-                    pairs_.resize(kept);
-                }
-            }
+            if (surfaces_[b].triangles.empty() && surfaces_[a].triangles.empty() && b < a) continue;
+            const std::uint32_t count = std::uint32_t(bodies[a].particle_count());
+            const std::size_t chunks = (count + kChunk - 1) / kChunk;
+            if (chunk_pairs_.size() < chunks) chunk_pairs_.resize(chunks);
+            const auto run = [&](std::size_t k) {
+                chunk_pairs_[k].clear();
+                const std::uint32_t end = std::min<std::uint32_t>(count, std::uint32_t((k + 1) * kChunk));
+                for (std::uint32_t p = std::uint32_t(k * kChunk); p < end; ++p) find_particle(bodies, a, b, p, whole[b], chunk_pairs_[k]);
+            };
+            if (chunks == 1) run(0);
+            else pool.run(chunks, run);
+            for (std::size_t k = 0; k < chunks; ++k) pairs_.insert(pairs_.end(), chunk_pairs_[k].begin(), chunk_pairs_[k].end());
         }
     }
     // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
@@ -383,7 +398,7 @@ bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair&
 }
 
 void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
-                                 std::span<const double> state) {
+                                 std::span<const double> state, ThreadPool& pool) {
     active_.clear();
     rigid_active_.clear();
     // Rigid points against triangles: the nearest triangle of each point (and the nearest
@@ -445,12 +460,25 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
     // is one (a particle between two layers of a folded sheet). The other triangles within
     // reach would only push along nearly the same normal, and cost the solver's passes. Found
     // again every substep: a particle sliding fast crosses a small triangle in a tick.
+    // Each pair's contact on its own (in chunks over the threads), then the choice in pair order.
+    made_.resize(pairs_.size());
+    made_ok_.resize(pairs_.size());
+    const std::size_t chunks = (pairs_.size() + kChunk - 1) / kChunk;
+    const auto make = [&](std::size_t chunk) {
+        const std::size_t end = std::min(pairs_.size(), (chunk + 1) * kChunk);
+        for (std::size_t k = chunk * kChunk; k < end; ++k) {
+            made_[k] = Active{};
+            made_ok_[k] = make_contact(bodies, pairs_[k], made_[k]);
+        }
+    };
+    if (chunks == 1) make(0);
+    else if (chunks > 1) pool.run(chunks, make);
     std::size_t group = 0;
     std::uint32_t group_a = ~0u, group_p = ~0u, group_b = ~0u;
     for (std::uint32_t k = 0; k < pairs_.size(); ++k) {
         const Pair& pair = pairs_[k];
-        Active c;
-        if (!make_contact(bodies, pair, c)) continue;
+        if (!made_ok_[k]) continue;
+        const Active& c = made_[k];
         if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
             active_.push_back(c);
             continue;
@@ -483,11 +511,31 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
     const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
     // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
     const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
+    // The passes work on a compact copy of the velocities of the particles the contacts touch
+    // (gathered once, scattered back at the end): the same sums in the same order as on the
+    // bodies' own arrays, without their three separate streams per particle.
+    const auto slot_of = [&](std::uint32_t body, std::uint32_t i) {
+        std::uint32_t& slot = slot_[body][i];
+        if (slot == kNoSlot) {
+            slot = std::uint32_t(local_v_.size());
+            local_v_.push_back(bodies[body].v[i]);
+            local_dv_.push_back({});
+            local_im_.push_back(bodies[body].inv_mass[i]);
+            local_of_.push_back({body, i});
+            local_pushed_.push_back(0);
+        }
+        return slot;
+    };
+    for (Active& c : active_) {
+        c.slot[0] = slot_of(c.c.body_a, c.c.particle);
+        for (int k = 0; k < 3; ++k) c.slot[k + 1] = slot_of(c.c.body_b, c.c.other[k]);
+    }
+    for (RigidActive& c : rigid_active_) {
+        for (int j = 0; j < 3; ++j) c.slot[j] = slot_of(c.soft, c.other[j]);
+    }
     const auto relative = [&](const Active& c) {
-        const SoftBody& A = bodies[c.c.body_a];
-        const SoftBody& B = bodies[c.c.body_b];
-        Vec3 v = A.v[c.c.particle];
-        for (int k = 0; k < 3; ++k) v -= B.v[c.c.other[k]] * c.c.weight[k];
+        Vec3 v = local_v_[c.slot[0]];
+        for (int k = 0; k < 3; ++k) v -= local_v_[c.slot[k + 1]] * c.c.weight[k];
         return v;
     };
     const auto position = [&](const Active& c) {
@@ -497,23 +545,18 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         for (int k = 0; k < 3; ++k) d -= B.x[c.c.other[k]] * c.c.weight[k];
         return d;
     };
+    const auto push = [&](std::uint32_t slot, const Vec3& impulse) {
+        const float im = local_im_[slot];
+        if (im == 0.0f) return;
+        const Vec3 dv = impulse * im;
+        local_v_[slot] += dv;
+        local_dv_[slot] += dv;
+        local_pushed_[slot] = 1;
+    };
     const auto apply = [&](const Active& c, const Vec3& J) {
-        SoftBody& A = bodies[c.c.body_a];
-        SoftBody& B = bodies[c.c.body_b];
-        const auto push = [&](std::uint32_t body, SoftBody& s, std::uint32_t i, const Vec3& impulse) {
-            const float im = s.inv_mass[i];
-            if (im == 0.0f) return;
-            const Vec3 dv = impulse * im;
-            s.v.add(i, dv);
-            dv_[body].add(i, dv);
-            if (!marked_[body][i]) {
-                marked_[body][i] = 1;
-                touched_[body].push_back(i);
-            }
-        };
-        push(c.c.body_a, A, c.c.particle, J);
+        push(c.slot[0], J);
         for (int k = 0; k < 3; ++k) {
-            if (c.c.weight[k] != 0.0f) push(c.c.body_b, B, c.c.other[k], J * -c.c.weight[k]);
+            if (c.c.weight[k] != 0.0f) push(c.slot[k + 1], J * -c.c.weight[k]);
         }
     };
     // Each contact's target: the normal velocity that brings its gap to zero at the step's end
@@ -542,7 +585,7 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         const RigidMotion& m = motions_[c.rigid];
         const Vec3d v = m.v + dP_[c.rigid] * body.inv_mass, w = m.omega + m.J_inv * dL_[c.rigid];
         Vec3d u = v + cross(w, c.r);
-        for (int j = 0; j < 3; ++j) u -= Vec3d(bodies[c.soft].v[c.other[j]]) * double(c.weight[j]);
+        for (int j = 0; j < 3; ++j) u -= Vec3d(local_v_[c.slot[j]]) * double(c.weight[j]);
         return u;
     };
     // Eq. 38's denominator along a unit direction u: the rigid side's 1/m + u . ((J^-1 (r x u)) x r),
@@ -559,18 +602,14 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             dP_[c.rigid] += J;
             dL_[c.rigid] += cross(c.r, J);  // Eq. 37
         }
-        SoftBody& B = bodies[c.soft];
         for (int j = 0; j < 3; ++j) {
-            const std::uint32_t i = c.other[j];
-            const float im = B.inv_mass[i];
+            const std::uint32_t slot = c.slot[j];
+            const float im = local_im_[slot];
             if (c.weight[j] == 0.0f || im == 0.0f) continue;
             const Vec3 dv = to_float(J * -double(c.weight[j] * im));
-            B.v.add(i, dv);
-            dv_[c.soft].add(i, dv);
-            if (!marked_[c.soft][i]) {
-                marked_[c.soft][i] = 1;
-                touched_[c.soft].push_back(i);
-            }
+            local_v_[slot] += dv;
+            local_dv_[slot] += dv;
+            local_pushed_[slot] = 1;
         }
     };
     for (RigidActive& c : rigid_active_) {
@@ -660,17 +699,21 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
     }
     // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
     const bool verlet = world.integrator == Integrator::Verlet;
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
+        const auto [b, i] = local_of_[slot];
+        slot_[b][i] = kNoSlot;
+        if (!local_pushed_[slot]) continue;
         SoftBody& body = bodies[b];
-        for (std::uint32_t i : touched_[b]) {
-            const Vec3 dv = dv_[b][i];
-            body.x.add(i, dv * h);
-            if (verlet) body.verlet_step.add(i, dv * h);
-            dv_[b].set(i, {});
-            marked_[b][i] = 0;
-        }
-        touched_[b].clear();
+        const Vec3 dv = local_dv_[slot];
+        body.v.set(i, local_v_[slot]);
+        body.x.add(i, dv * h);
+        if (verlet) body.verlet_step.add(i, dv * h);
     }
+    local_v_.clear();
+    local_dv_.clear();
+    local_im_.clear();
+    local_of_.clear();
+    local_pushed_.clear();
     for (const Active& c : active_) {
         if (c.c.normal_impulse <= 0.0) continue;
         SoftContact out = c.c;

@@ -42,6 +42,7 @@
 // particle_contacts.h's, solved by contact_solver.h.)
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +53,7 @@
 #include "physics/params.h"
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
+#include "physics/thread_pool.h"
 
 namespace softbody {
 
@@ -67,11 +69,15 @@ public:
     // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
     // particles may go in this one). Returns whether there are any.
     // `rigid`, `state`: the rigid bodies and Listing 10's flat state as the tick begins.
+    // The particles' queries run on the pool's threads, each chunk of particles into a list
+    // of its own, joined in order: the same pairs in the same order at any thread count.
     bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-              const Params& world, double dt);
+              const Params& world, double dt, ThreadPool& pool);
     bool empty() const { return pairs_.empty(); }
     // Before the integrator moves the particles: each pair's nearest point and normal.
-    void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state);
+    // (Each pair's nearest point on the pool's threads; which are kept, in pair order after.)
+    void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                       ThreadPool& pool);
     // After the integrator's free step of h (and the rigid contacts): the impulses, on the
     // particles and on the rigid bodies' state.
     void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const Params& world,
@@ -99,8 +105,13 @@ private:
         float target = 0.0f;          // the least normal velocity the step may end with, m/s
         float bounce = 0.0f;          // closing speed as the substep began, m/s (> 0: closing)
         Vec3 friction;                // accumulated tangential impulse
+        std::uint32_t slot[4] = {0, 0, 0, 0};  // solve's slots of the particle and the triangle's corners
     };
+    // Particles, or pairs, a task of the pool takes: enough to outweigh waking a thread.
+    static constexpr std::size_t kChunk = 1024;
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
+    void find_particle(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, const Box3f& whole_b,
+                       std::vector<Pair>& out) const;
     bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
 
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
@@ -120,6 +131,7 @@ private:
         Vec3d friction;
         Vec3d r;                     // arm from the centre of mass to the contact point, now
         double separation = 0.0;
+        std::uint32_t slot[3] = {0, 0, 0};  // solve's slots of the triangle's corners
     };
     void find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                     const Params& world, double dt);
@@ -133,11 +145,20 @@ private:
     std::vector<Surface> surfaces_;
     std::vector<Pair> pairs_;
     std::vector<Active> active_;
+    std::vector<std::vector<Pair>> chunk_pairs_;  // find's lists, one per chunk of particles
+    std::vector<Active> made_;                    // begin_substep: each pair's contact
+    std::vector<std::uint8_t> made_ok_;           // and whether it is within reach
     std::vector<SoftContact> touching_;
     std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
-    std::vector<Vec3Array> dv_;               // per body: the velocity the impulses added this substep
-    std::vector<std::vector<std::uint32_t>> touched_;  // per body: particles with a dv
-    std::vector<std::vector<std::uint8_t>> marked_;
+    // solve's compact copy: per body and particle its slot (kNoSlot: none); per slot the
+    // particle's velocity, what the impulses added to it, its inverse mass, whose it is and
+    // whether an impulse reached it.
+    static constexpr std::uint32_t kNoSlot = ~0u;
+    std::vector<std::vector<std::uint32_t>> slot_;
+    std::vector<Vec3> local_v_, local_dv_;
+    std::vector<float> local_im_;
+    std::vector<std::array<std::uint32_t, 2>> local_of_;
+    std::vector<std::uint8_t> local_pushed_;
 };
 
 }  // namespace softbody

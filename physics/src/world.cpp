@@ -401,7 +401,7 @@ void World::step(float h) {
     if (contacts) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
-    if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_);
+    if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_, *pool_);
     switch (params_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
@@ -567,7 +567,7 @@ void World::tick() {
     tick_substeps_ = 0;
     // Soft bodies within reach of one another (or of themselves): found before the last
     // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
-    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt);
+    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt, *pool_);
     const double dt = params_.dt;
     double left = dt;
     for (bool first = true; left > 1e-9 * dt; first = false) {
