@@ -18,12 +18,14 @@ inline render::Vec3Span span_of(const Vec3Array& a) { return {a.x.data(), a.y.da
 // has always drawn its one body), the others distinct from it, from one another and from the
 // rigid bodies' palette below.
 inline glm::vec3 soft_body_color(std::size_t i) {
-    static constexpr std::array<glm::vec3, 6> kPalette{{{0.46f, 0.72f, 0.30f},
-                                                        {0.30f, 0.56f, 0.90f},
-                                                        {0.88f, 0.36f, 0.52f},
-                                                        {0.92f, 0.84f, 0.36f},
-                                                        {0.50f, 0.36f, 0.78f},
-                                                        {0.26f, 0.74f, 0.66f}}};
+    // Brighter or deeper than the rigid bodies' muted hues: lime, crimson, sky, ivory, navy,
+    // magenta (a soft ball and a rigid ball dropped side by side must not both be blue).
+    static constexpr std::array<glm::vec3, 6> kPalette{{{0.66f, 0.86f, 0.20f},
+                                                        {0.86f, 0.20f, 0.30f},
+                                                        {0.52f, 0.80f, 0.98f},
+                                                        {0.93f, 0.93f, 0.88f},
+                                                        {0.22f, 0.28f, 0.62f},
+                                                        {0.90f, 0.25f, 0.75f}}};
     return kPalette[(i - 1) % kPalette.size()];
 }
 
