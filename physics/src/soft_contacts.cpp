@@ -505,7 +505,7 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
 }
 
 void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
-                         const Params& world, float h, ThreadPool& pool) {
+                         const Params& world, float h) {
     touching_.clear();
     if (active_.empty() && rigid_active_.empty()) return;
     const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
@@ -628,58 +628,6 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         c.lambda = 0.0;
         c.friction = {};
     }
-    // One contact's Gauss-Seidel step; returns how much it moved the velocities.
-    const auto solve_one = [&](Active& c) {
-        const Vec3 n = to_float(c.c.normal);
-        // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
-        const float v_n = dot(relative(c), n);
-        const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
-        const float dl = lambda - float(c.c.normal_impulse);
-        c.c.normal_impulse = lambda;
-        if (dl != 0.0f) apply(c, n * dl);
-        // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
-        // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
-        const Vec3 v = relative(c);
-        const Vec3 v_t = v - n * dot(v, n);
-        Vec3 total = c.friction - v_t / c.inv_mass_sum;
-        const float size = length(total);
-        if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
-        const Vec3 df = total - c.friction;
-        c.friction = total;
-        if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
-        return (std::abs(dl) + length(df)) * c.inv_mass_sum;
-    };
-    // Many contacts are split in two by where their particles are (the median along the widest
-    // axis of the particles they touch): those whose particles all lie on one side, those whose
-    // particles all lie on the other, and those across. The two sides share no particle, so
-    // each pass solves them side by side on two threads, then the contacts across; the split
-    // depends on the contacts alone, so the order, and the result, is the same at any thread
-    // count (on one thread the sides run one after the other).
-    for (auto& part : parts_) part.clear();
-    if (active_.size() >= kSplitContacts) {
-        Vec3 low = bodies[local_of_[0][0]].x[local_of_[0][1]], high = low;
-        for (const auto& [b, i] : local_of_) {
-            const Vec3 p = bodies[b].x[i];
-            low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
-            high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
-        }
-        const Vec3 extent = high - low;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-        const auto along = [&](std::size_t slot) {
-            const Vec3 p = bodies[local_of_[slot][0]].x[local_of_[slot][1]];
-            return axis == 0 ? p.x : (axis == 1 ? p.y : p.z);
-        };
-        coordinate_.resize(local_of_.size());
-        for (std::size_t slot = 0; slot < local_of_.size(); ++slot) coordinate_[slot] = along(slot);
-        std::nth_element(coordinate_.begin(), coordinate_.begin() + std::ptrdiff_t(coordinate_.size() / 2), coordinate_.end());
-        const float median = coordinate_[coordinate_.size() / 2];
-        for (std::uint32_t k = 0; k < active_.size(); ++k) {
-            const Active& c = active_[k];
-            int sides = 0;  // bit 0: a particle below the median; bit 1: one at or above it
-            for (int j = 0; j < 4; ++j) sides |= along(c.slot[j]) < median ? 1 : 2;  // every corner is read
-            parts_[sides == 1 ? 0 : (sides == 2 ? 1 : 2)].push_back(k);
-        }
-    }
     for (int pass = 0; pass < kPasses; ++pass) {
         float largest = 0.0f;  // the largest velocity change of the pass
         for (RigidActive& c : rigid_active_) {
@@ -706,15 +654,25 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
             largest = std::max(largest, float((std::abs(dl) + length(df)) * k_n));
         }
-        if (parts_[0].empty() && parts_[1].empty() && parts_[2].empty()) {
-            for (Active& c : active_) largest = std::max(largest, solve_one(c));
-        } else {
-            float side_largest[2] = {0.0f, 0.0f};
-            pool.run(2, [&](std::size_t side) {
-                for (std::uint32_t k : parts_[side]) side_largest[side] = std::max(side_largest[side], solve_one(active_[k]));
-            });
-            largest = std::max({largest, side_largest[0], side_largest[1]});
-            for (std::uint32_t k : parts_[2]) largest = std::max(largest, solve_one(active_[k]));
+        for (Active& c : active_) {
+            const Vec3 n = to_float(c.c.normal);
+            // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
+            const float v_n = dot(relative(c), n);
+            const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
+            const float dl = lambda - float(c.c.normal_impulse);
+            c.c.normal_impulse = lambda;
+            if (dl != 0.0f) apply(c, n * dl);
+            // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
+            // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
+            const Vec3 v = relative(c);
+            const Vec3 v_t = v - n * dot(v, n);
+            Vec3 total = c.friction - v_t / c.inv_mass_sum;
+            const float size = length(total);
+            if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
+            const Vec3 df = total - c.friction;
+            c.friction = total;
+            if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
+            largest = std::max(largest, (std::abs(dl) + length(df)) * c.inv_mass_sum);
         }
         // Converged: no contact's velocity moved by more than kSettled in the whole pass.
         if (largest < kSettled) break;

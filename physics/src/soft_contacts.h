@@ -80,9 +80,8 @@ public:
                        ThreadPool& pool);
     // After the integrator's free step of h (and the rigid contacts): the impulses, on the
     // particles and on the rigid bodies' state.
-    // (Many contacts: two halves that share no particle solved side by side, then those across.)
     void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const Params& world,
-               float h, ThreadPool& pool);
+               float h);
     // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
     const std::vector<SoftContact>& contacts() const { return touching_; }
 
@@ -110,8 +109,6 @@ private:
     };
     // Particles, or pairs, a task of the pool takes: enough to outweigh waking a thread.
     static constexpr std::size_t kChunk = 1024;
-    // Contacts from which solve splits them in two halves.
-    static constexpr std::size_t kSplitContacts = 256;
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
     void find_particle(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, const Box3f& whole_b,
                        std::vector<Pair>& out) const;
@@ -162,8 +159,6 @@ private:
     std::vector<float> local_im_;
     std::vector<std::array<std::uint32_t, 2>> local_of_;
     std::vector<std::uint8_t> local_pushed_;
-    std::vector<std::uint32_t> parts_[3];  // solve's contacts: one side, the other, across
-    std::vector<float> coordinate_;        // each slot's place along the split's axis
 };
 
 }  // namespace softbody

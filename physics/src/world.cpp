@@ -442,7 +442,7 @@ void World::step(float h) {
     // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
     if (contacts) solver_->substep(contact_world());
-    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, params_, h, *pool_);
+    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, params_, h);
     for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
 }
 
