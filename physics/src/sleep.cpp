@@ -89,13 +89,21 @@ bool World::wake_touched_islands() {
 // At the end of a tick: each awake body's rest time, the islands, and those that fall asleep.
 void World::update_sleep() {
     const std::size_t n = rigid_.size();
+    if (n == 0) return;
     const double dt = params_.dt;
+    // Bodies still being pushed out of an overlap deeper than a loaded contact stands.
+    std::vector<std::uint8_t> overlapping(n, 0);
+    for (const RigidContact& c : contacts_) {
+        if (c.soft >= 0 || !(c.depth > kSleepDepth)) continue;
+        overlapping[c.a] = 1;
+        if (c.b >= 0) overlapping[std::size_t(c.b)] = 1;
+    }
     bool any_rested = false;
     for (std::size_t b = 0; b < n; ++b) {
         if (rigid_[b].fixed || asleep_[b]) continue;
         const RigidMotion m = rigid_motion(b);
         const double speed = length(m.v) + length(m.omega) * rigid_[b].bounding_radius;
-        sleep_.rest_time[b] = speed < kSleepSpeed ? sleep_.rest_time[b] + dt : 0.0;
+        sleep_.rest_time[b] = speed < kSleepSpeed && !overlapping[b] ? sleep_.rest_time[b] + dt : 0.0;
         any_rested = any_rested || sleep_.rest_time[b] >= kTimeToSleep;
     }
     if (!params_.sleeping || !any_rested) return;

@@ -133,6 +133,7 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
     World* world = pile.world.get();
     ASSERT_EQ(world->status(), Status::Ok) << world->divergence();
     const std::size_t bodies = dynamic_bodies(*world);
+    std::printf("a pile of %zu boxes after 10 s: %zu asleep\n", bodies, world->sleeping_count());
     EXPECT_GE(world->sleeping_count() * 10, bodies * 9) << world->sleeping_count() << " of " << bodies << " asleep";
     // A sleeping body is still: its P and L are 0.
     for (std::size_t b = 0; b < world->rigid_body_count(); ++b) {
@@ -169,6 +170,8 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
         }
     }
     // ... and 10 s later the pile, the ball and what it woke have settled and sleep again.
+    std::printf("the ball touched %zu bodies, %zu woke; 10 s on, %zu of %zu asleep\n", touched.size(), woke.size(),
+                world->sleeping_count(), dynamic_bodies(*world));
     EXPECT_GE(world->sleeping_count() * 10, dynamic_bodies(*world) * 9) << world->sleeping_count() << " asleep";
     std::size_t woke_asleep = 0;
     for (std::size_t b : woke) woke_asleep += world->rigid_asleep(b) ? 1 : 0;
