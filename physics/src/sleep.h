@@ -43,8 +43,8 @@ namespace softbody {
 // would not let sleep (measured: README, "Choices the physics makes").
 inline constexpr double kSleepSpeed = 0.05;
 // m: a body with a contact deeper than this is not at rest, however slow: it is still being
-// pushed out of an overlap, slowly (the push apart is overdamped: 5 mm deep comes out at about
-// 5 cm/s, contact_solver.h), and asleep it would stay that deep. Resting contacts in a pile of
+// pushed out of an overlap, slowly (the push apart is overdamped, contact_solver.h), and asleep
+// it would stay that deep. Resting contacts in a pile of
 // boxes stand up to 1 to 2 mm deep (measured: with 1 mm here, 56 of the 100 boxes of the pile
 // in tests/physics/sleep_test.cpp sleep after 10 s; with 2 mm, over 90).
 inline constexpr double kSleepDepth = 2e-3;
