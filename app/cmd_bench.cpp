@@ -501,6 +501,7 @@ struct ScaleRun {
     int has_ground = 0;
     double penetration_m = 0.0;
     int moving = 0;
+    int sleeping = 0;
     double kinetic_J = 0.0;
     int has_top = 0;
     double top_moved_m = 0.0;
@@ -533,7 +534,7 @@ ScaleRun measure_scale(const std::string& scene_name, int threads, double second
         for (std::size_t i = 0; i < world.rigid_body_count(); ++i) {
             const RigidMotion m = world.rigid_motion(i);
             defs.push_back(world.rigid_body(i));
-            now.push_back({m.x, m.R, m.v, m.omega, lowest_point(world.rigid_body(i), m.x, m.R)});
+            now.push_back({m.x, m.R, m.v, m.omega, lowest_point(world.rigid_body(i), m.x, m.R), world.rigid_asleep(i)});
         }
         const Params& p = world.params();
         const Soundness s = soundness(defs, now, p.ground ? std::optional<double>(p.ground_height) : std::nullopt,
@@ -542,6 +543,7 @@ ScaleRun measure_scale(const std::string& scene_name, int threads, double second
         r.has_ground = s.penetration_m.has_value();
         r.penetration_m = s.penetration_m.value_or(0.0);
         r.moving = s.moving;
+        r.sleeping = s.sleeping;
         r.kinetic_J = s.kinetic_J;
         r.has_top = s.top_moved_m.has_value();
         r.top_moved_m = s.top_moved_m.value_or(0.0);
@@ -579,6 +581,7 @@ ScaleRow softbody_row(const std::string& scene, const ScaleRun& r) {
     if (r.has_ground) row.penetration_m = r.penetration_m;
     if (r.has_top) row.top_moved_m = r.top_moved_m;
     row.moving = r.moving;
+    row.sleeping = r.sleeping;
     row.kinetic_J = r.kinetic_J;
     row.peak_kb = r.peak_kb;
     return row;
@@ -712,8 +715,8 @@ std::string mm(double metres) {
 }
 
 void print_scale_header() {
-    std::printf("%-12s %-23s %6s %5s %6s %10s %8s %7s %10s %8s\n", "scene", "run", "bodies", "s", "ticks", "ms/tick",
-                "depth mm", "moving", "KE left J", "top mm");
+    std::printf("%-12s %-23s %6s %5s %6s %10s %8s %7s %7s %10s %8s\n", "scene", "run", "bodies", "s", "ticks", "ms/tick",
+                "depth mm", "moving", "asleep", "KE left J", "top mm");
 }
 
 void print_scale_row(const ScaleRow& r) {
@@ -723,8 +726,9 @@ void print_scale_row(const ScaleRow& r) {
         return;
     }
     const std::string depth = r.penetration_m ? mm(*r.penetration_m) : "-", top = r.top_moved_m ? mm(*r.top_moved_m) : "-";
-    std::printf("%-12s %-23s %6d %5.3g %6d %10.4g %8s %7d %10.3g %8s%s\n", r.scene.c_str(), run.c_str(), r.bodies,
-                r.seconds, r.ticks, r.ms_per_tick, depth.c_str(), r.moving, r.kinetic_J, top.c_str(),
+    const std::string asleep = r.sleeping ? std::to_string(*r.sleeping) : "-";
+    std::printf("%-12s %-23s %6d %5.3g %6d %10.4g %8s %7d %7s %10.3g %8s%s\n", r.scene.c_str(), run.c_str(), r.bodies,
+                r.seconds, r.ticks, r.ms_per_tick, depth.c_str(), r.moving, asleep.c_str(), r.kinetic_J, top.c_str(),
                 r.status == "diverged" ? "  DIVERGED" : "");
 }
 
@@ -763,7 +767,8 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
                   << " s" << (seconds_override > 0.0 ? "" : " (3 s for pyramid:20)")
                   << ", ms per tick over the whole run (wall clock of the ticks only, dt 0.02 s);\n"
                      "after it: depth = the deepest point of any body below the ground (its collision shape's support\n"
-                     "point), moving = bodies with a point faster than 1 cm/s (|v| + |w| r), KE = kinetic energy left,\n"
+                     "point), moving = bodies with a point faster than 1 cm/s (|v| + |w| r), asleep = bodies the engine\n"
+                     "has put to sleep (softbody: the sleeping key, on by default), KE = kinetic energy left,\n"
                      "top = how far a pyramid's top box went from its start.\n";
         if (!peer.empty()) {
             std::cout << "Bullet runs: " << peer << " (the same scenes built in Bullet; see README, \"Speed\").\n";
@@ -827,8 +832,8 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
             }
             std::cout << "\n";
         }
-        std::cout << "\nafter the run: deepest point below the ground, bodies still moving, kinetic energy left (and the\n"
-                     "pyramid's top box: how far it went):\n\n";
+        std::cout << "\nafter the run: deepest point below the ground, bodies still moving, bodies asleep, kinetic energy\n"
+                     "left (and the pyramid's top box: how far it went):\n\n";
         head("l");
         for (const std::string& scene : scenes) {
             const ScaleRow* any = find(scene, columns.front());
@@ -839,8 +844,9 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
                     std::cout << " - |";
                     continue;
                 }
-                std::cout << " " << (r->penetration_m ? mm(*r->penetration_m) + " mm, " : "") << r->moving
-                          << " moving, " << sig3(r->kinetic_J) << " J";
+                std::cout << " " << (r->penetration_m ? mm(*r->penetration_m) + " mm, " : "") << r->moving << " moving, ";
+                if (r->sleeping) std::cout << *r->sleeping << " asleep, ";
+                std::cout << sig3(r->kinetic_J) << " J";
                 if (r->top_moved_m) std::cout << ", top " << mm(*r->top_moved_m) << " mm";
                 if (r->status != "ok") std::cout << " (" << r->status << ")";
                 std::cout << " |";

@@ -171,7 +171,10 @@ int simulate_command(int argc, char** argv) {
         {"state_hash", hash},
     };
     if (world.soft_body_count() > 0) out["soft_bodies"] = soft_bodies_json(world);
-    if (world.rigid_body_count() > 0) out["rigid_bodies"] = rigid_bodies_json(world);
+    if (world.rigid_body_count() > 0) {
+        out["sleeping"] = world.sleeping_count();  // rigid bodies asleep at the end (the `sleeping` key)
+        out["rigid_bodies"] = rigid_bodies_json(world);
+    }
     out["momentum"] = vec_json(world.momentum());
     out["angular_momentum"] = vec_json(world.angular_momentum());
     if (!ok) out["reason"] = world.divergence();

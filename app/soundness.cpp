@@ -25,6 +25,7 @@ Soundness soundness(std::span<const RigidBody> defs, std::span<const BodyNow> no
         ++s.bodies;
         if (ground_height) deepest = std::max(deepest, *ground_height - b.lowest_z);
         if (length(b.v) + length(b.omega) * body.bounding_radius > kMovingSpeed) ++s.moving;
+        if (b.asleep) ++s.sleeping;
         const Mat3 J_world = b.R * body.J_body * b.R.transposed();  // Eq. 32's J, not its inverse
         s.kinetic_J += 0.5 * body.mass * dot(b.v, b.v) + 0.5 * dot(b.omega, J_world * b.omega);
         const double z0 = body.initial[rigid::X + 2];

@@ -24,12 +24,14 @@ struct BodyNow {
     Mat3 R;           // body to world
     Vec3d v, omega;   // m/s, rad/s (world axes)
     double lowest_z;  // lowest point of its collision shape (the shape's support point straight down), m
+    bool asleep = false;  // the engine has put it to sleep (softbody: the `sleeping` key)
 };
 
 struct Soundness {
     int bodies = 0;                       // dynamic ones (the bin's walls are not counted)
     std::optional<double> penetration_m;  // deepest lowest point below the ground (0: none); empty without a ground
     int moving = 0;                       // bodies whose fastest point, |v| + |w| r, exceeds kMovingSpeed
+    int sleeping = 0;                     // bodies the engine has put to sleep
     double kinetic_J = 0.0;               // sum 1/2 m |v|^2 + 1/2 w . J_world w
     std::optional<double> top_moved_m;    // a pyramid's: how far the highest box at the start has gone
 };

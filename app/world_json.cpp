@@ -21,7 +21,8 @@ nlohmann::ordered_json rigid_body_json(const World& world, std::size_t b) {
             {"angular_velocity", vec_json(m.omega)},
             {"angular_momentum", vec_json(m.L)},
             {"inertia", inertia},
-            {"kinetic_energy", kinetic}};
+            {"kinetic_energy", kinetic},
+            {"asleep", world.rigid_asleep(b)}};
 }
 
 nlohmann::ordered_json rigid_bodies_json(const World& world) {

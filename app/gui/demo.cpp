@@ -618,6 +618,12 @@ render::Frame Demo::make_frame() const {
     render::Frame frame;
     const World& w = *world_;
     world_view(w, paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha()), frame);
+    if (dim_sleeping) {
+        // Half way to a mid grey, and darker: still the body's own colour, but plainly resting.
+        for (std::size_t b = 0; b < w.rigid_body_count(); ++b) {
+            if (w.rigid_asleep(b)) frame.rigid_bodies[b].color = glm::mix(frame.rigid_bodies[b].color, glm::vec3(0.35f), 0.55f);
+        }
+    }
     frame.camera = camera;
     frame.overlays = overlays;
     frame.appearance = appearance;

@@ -152,6 +152,8 @@ public:
     // put them in the view; it holds still while the mouse pulls a body. On by default for a
     // scene with one moving body (fixed bodies are scenery); the Display panel and T toggle it.
     bool follow = false;
+    // Sleeping rigid bodies drawn dimmer (the Display panel): what the physics skips shows.
+    bool dim_sleeping = true;
     void follow_bodies(double seconds);  // one frame's worth (Demo::advance calls it)
     void pan(float dx, float dy);        // the camera's pan, which a follow keeps
     // The view's shape: width / height, and the fraction of its width to move a framed body

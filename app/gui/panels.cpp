@@ -662,6 +662,20 @@ void Panels::inspector(Demo& demo) {
     if (!in) return;
     const RigidBody& body = demo.world().rigid_body(in->body);
     ImGui::Text("rigid body '%s'%s", body.name.c_str(), body.fixed ? " (fixed)" : "");
+    if (!body.fixed) {
+        const World& world = demo.world();
+        if (world.rigid_asleep(in->body)) {
+            ImGui::TextColored(ImVec4(0.55f, 0.75f, 1.0f, 1.0f), "asleep: at rest, not integrated");
+            if (ImGui::IsItemHovered()) {
+                ImGui::SetTooltip("Its island's bodies were all slower than 5 cm/s at every point for 0.5 s: it costs nothing\n"
+                                  "until an awake body or a soft body touches it, it is grabbed, or a key changes.");
+            }
+        } else if (world.rigid_rest_time(in->body) > 0.0) {
+            ImGui::TextDisabled("awake, at rest for %.2f s", world.rigid_rest_time(in->body));
+        } else {
+            ImGui::TextDisabled("awake, moving");
+        }
+    }
     ImGui::TextDisabled("force          |F| N   |tau| N m");
     for (const WrenchTerm& t : in->terms) {
         ImGui::Text("%-14s %-8s %8.4g %8.4g", t.name.substr(0, 14).c_str(), t.equation.c_str(), length(t.force), length(t.torque));
@@ -799,6 +813,13 @@ void Panels::display(Demo& demo) {
     ImGui::Checkbox("contacts", &o.contacts);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Contact points of the last step, each normal as long as its impulse (Eq. 38).");
     ImGui::Checkbox("springs between bodies", &o.links);
+    ImGui::SameLine(180 * scale_);
+    ImGui::Checkbox("sleeping dimmer", &demo.dim_sleeping);
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Rigid bodies that sleep drawn greyer: an island of bodies at rest for half a second sleeps (it is\n"
+                          "not integrated and its contacts are not solved) until something touches it, you grab it or a\n"
+                          "key changes. The sleeping key (Parameters) turns sleeping off.");
+    }
     ImGui::Checkbox("ground and grid", &a.ground);
     ImGui::SameLine(180 * scale_);
     ImGui::Checkbox("follow the bodies (T)", &demo.follow);

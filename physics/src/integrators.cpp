@@ -136,10 +136,11 @@ void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double 
     }
 }
 
-void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h) {
+void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h,
+                          std::span<const std::uint8_t> asleep) {
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const RigidBody& body = bodies[b];
-        if (body.fixed) continue;
+        if (body.fixed || (!asleep.empty() && asleep[b])) continue;
         const std::size_t at = b * rigid::kStateSize;
         const Vec3d P{y[at + rigid::P], y[at + rigid::P + 1], y[at + rigid::P + 2]};
         const Vec3d L{y[at + rigid::L], y[at + rigid::L + 1], y[at + rigid::L + 2]};

@@ -26,6 +26,7 @@
 //   rk4               classic Runge-Kutta on the whole array
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "physics/rigid_body.h"
@@ -58,9 +59,11 @@ void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, co
 // y += h dy, over the whole array (Listing 10's ExplicitEuler call).
 void flat_euler(std::span<double> y, std::span<const double> dy, double h);
 // Symplectic Euler's two halves: the momentum slots (P, L) by h dy; then every body's x and q
-// from `start` (the step's start) moved by the momenta now in `y`.
+// from `start` (the step's start) moved by the momenta now in `y`; bodies marked in `asleep`
+// (empty: none) are left where they are (sleep.h).
 void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double h);
-void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h);
+void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h,
+                          std::span<const std::uint8_t> asleep = {});
 // q turned through h as a free body with angular momentum L turns (the splitting above), its
 // energy 1/2 L . J_world^-1 L kept at what it was at q, or at `energy_target` when one is given.
 Quat free_turn(const RigidBody& body, const Quat& q, const Vec3d& L, double h, double energy_target = -1.0);

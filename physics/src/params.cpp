@@ -43,6 +43,7 @@ constexpr ParamInfo kTable[] = {
     {"pinned", ParamType::IndexList, "", "", "Vertex indices (0-based, as in the file) held fixed in place", 0, 0, false, false, ParamScope::Body},
     {"max_particles", ParamType::Int, "", "", "Particle budget: a mesh with more is simulated on this many, drawn in full; all: one per vertex", 4, 20000, false, false, ParamScope::Body, "all"},
     {"renormalize_every", ParamType::Int, "ticks", "Listing 9", "Renormalise each rigid body's quaternion every this many ticks (Listing 9: 5); 0: never, and watch |q| drift", 0, 1e6, false, true},
+    {"sleeping", ParamType::Bool, "", "", "Rigid bodies at rest (slower than 5 cm/s) for half a second sleep, costing nothing, until touched, grabbed or a key changes", 0, 0, false, true},
 };
 
 struct FieldRef {
@@ -85,6 +86,7 @@ FieldRef field(Params& p, std::string_view key) {
     if (key == "pinned") return {.list = &p.pinned};
     if (key == "max_particles") return {.i = &p.max_particles};
     if (key == "renormalize_every") return {.i = &p.renormalize_every};
+    if (key == "sleeping") return {.b = &p.sleeping};
     return {};
 }
 

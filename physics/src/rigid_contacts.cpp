@@ -8,7 +8,7 @@ namespace softbody {
 
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                          std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
-                         std::vector<RigidContact>& out) {
+                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep) {
     const std::size_t n = bodies.size();
     if (n < 2) return;
     const double g = length(Vec3d(world.gravity));
@@ -24,6 +24,7 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
     for (const BodyPair& pair : scratch.pairs) {
         const RigidBody &A = bodies[pair.a], &B = bodies[pair.b];
         if (A.fixed && B.fixed) continue;
+        if (!asleep.empty() && (A.fixed || asleep[pair.a]) && (B.fixed || asleep[pair.b])) continue;
         // The normal points out of b toward a: a moving body is a, so a fixed one is always b.
         std::uint32_t ia = pair.a, ib = pair.b;
         if (A.fixed) std::swap(ia, ib);

@@ -3,6 +3,7 @@
 // solver (contact_solver.h).
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -19,6 +20,8 @@ namespace softbody {
 // the sum of the two margins. Restitution is the larger of the two bodies' (as Box2D mixes it),
 // friction the geometric mean sqrt(mu_a mu_b); each defaults to the world's. `start`: the flat
 // state when the tick began, `h` the tick; `scratch` keeps its allocations from step to step.
+// Bodies marked in `asleep` (empty: none) are in the broad phase, but a pair of two that are
+// each asleep or fixed is not tested (sleep.h).
 struct RigidContactScratch {
     std::vector<Aabb> boxes;
     std::vector<double> margins;
@@ -27,6 +30,6 @@ struct RigidContactScratch {
 };
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                          std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
-                         std::vector<RigidContact>& out);
+                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {});
 
 }  // namespace softbody

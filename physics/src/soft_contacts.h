@@ -84,6 +84,12 @@ public:
                float h);
     // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
     const std::vector<SoftContact>& contacts() const { return touching_; }
+    // f(r) for each rigid body r with a point within reach of a soft body's triangles this tick
+    // (found by find; once per point): such a body is kept awake (sleep.h).
+    template <class F>
+    void for_each_rigid_in_reach(F f) const {
+        for (const RigidPair& pair : rigid_pairs_) f(pair.rigid);
+    }
 
 private:
     struct Surface {

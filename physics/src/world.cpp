@@ -14,6 +14,7 @@
 #include "message_text.h"
 #include "particle_contacts.h"
 #include "rigid_contacts.h"
+#include "sleep.h"
 #include "soft_contacts.h"
 #include "physics/error.h"
 
@@ -102,6 +103,7 @@ void World::build() {
     y_tick_prev_ = y_;
     contacts_.clear();
     previous_contacts_.clear();
+    reset_sleep();
     ticks_ = 0;
     status_ = Status::Ok;
     divergence_.clear();
@@ -128,6 +130,7 @@ WorldSnapshot World::snapshot() const {
     out.energy_baseline = energy_baseline_;
     out.energy_scale = energy_scale_;
     out.energy_baseline_stale = energy_baseline_stale_;
+    out.sleep = sleep_;
     return out;
 }
 
@@ -160,6 +163,14 @@ void World::restore(const WorldSnapshot& s, bool more_bodies) {
     energy_baseline_ = s.energy_baseline;
     energy_scale_ = s.energy_scale;
     energy_baseline_stale_ = s.energy_baseline_stale;
+    // Asleep as they were; bodies added since start awake.
+    if (s.sleep.island.size() != s.rigid.size() / rigid::kStateSize || s.sleep.rest_time.size() != s.sleep.island.size()) {
+        throw std::invalid_argument("World::restore: a snapshot of another world");
+    }
+    sleep_ = s.sleep;
+    sleep_.rest_time.resize(rigid_.size(), 0.0);
+    sleep_.island.resize(rigid_.size(), kAwake);
+    for (std::size_t b = 0; b < rigid_.size(); ++b) asleep_[b] = sleep_.island[b] != kAwake ? 1 : 0;
 }
 
 std::size_t WorldSnapshot::bytes() const {
@@ -168,7 +179,8 @@ std::size_t WorldSnapshot::bytes() const {
         total += sizeof(Soft) + body.inv_mass.size() * sizeof(float) +
                  (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
     }
-    return total + (rigid.size() + rigid_tick_prev.size()) * sizeof(double) + contacts.size() * sizeof(RigidContact) +
+    return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size()) * sizeof(double) +
+           (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + sleep.island.size() * sizeof(std::uint32_t) +
            divergence.size();
 }
 
@@ -247,7 +259,10 @@ void World::set_body_params(std::size_t b, const Params& params) {
     if (b >= soft_.size()) throw InputError("there is no soft body number " + std::to_string(b));
     validate(params);
     check_pins(params, soft_[b].mesh);
-    if (!(params == soft_[b].params)) energy_baseline_stale_ = true;
+    if (!(params == soft_[b].params)) {
+        energy_baseline_stale_ = true;
+        wake_all();  // a key changed: whatever it does, nothing stays asleep through it
+    }
     soft_[b].params = params;
     apply_body_keys(soft_[b]);
     update_substeps();
@@ -262,9 +277,24 @@ void World::set_params(const Params& params) {
     if (params.integrator != params_.integrator) {
         for (SoftBody& body : soft_) body.verlet_h = 0.0f;
     }
-    if (!(params == params_)) energy_baseline_stale_ = true;
+    if (!(params == params_)) {
+        energy_baseline_stale_ = true;
+        wake_all();
+    }
     params_ = params;
     update_substeps();
+}
+
+void World::set_grab(std::optional<Grab> grab) {
+    grab_ = grab;
+    energy_baseline_stale_ = true;  // the grab does work on the body
+    if (grab_ && grab_->rigid) wake_rigid(grab_->body);
+}
+
+void World::set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction) {
+    rigid_[i].restitution = restitution;
+    rigid_[i].friction = friction;
+    wake_rigid(i);
 }
 
 void World::set_pinned(std::uint32_t particle, bool pinned) {
@@ -374,6 +404,11 @@ void World::evaluate_forces(int stage, bool record_contacts) {
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         const RigidBody& body = rigid_[b];
         const double* state = &y[b * rigid::kStateSize];
+        if (asleep_[b]) {
+            // Not integrated: P and L are 0 and stay so, so x and q do not move (sleep.h).
+            std::fill_n(&k_[stage][b * rigid::kStateSize], rigid::kStateSize, 0.0);
+            continue;
+        }
         Wrench w;
         if (!body.fixed) {
             const RigidMotion m = softbody::rigid_motion(body, state);
@@ -416,7 +451,7 @@ void World::step(float h) {
             // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
             if (!rigid_.empty()) {
                 flat_euler_momenta(y_, k_[0], hd);
-                symplectic_positions(rigid_, y_step_start_, y_, hd);
+                symplectic_positions(rigid_, y_step_start_, y_, hd, asleep_);
             }
             break;
         case Integrator::ExplicitEuler:
@@ -461,7 +496,7 @@ int World::rotation_substeps(double time) const {
     double needed = 1.0;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         const RigidBody& body = rigid_[b];
-        if (body.fixed) continue;
+        if (body.fixed || asleep_[b]) continue;
         const RigidMotion m = rigid_motion(b);
         needed = std::max(needed, time * length(m.omega) / turn);
         if (stiff && body.principal_moments.x > 0.0) {
@@ -496,14 +531,22 @@ ContactWorld World::contact_world() {
 // bodies are now, each point within how far its bodies can move in that time (a speculative
 // contact, as Box2D finds them): rigid bodies with the ground and with one another, soft bodies'
 // particles with rigid bodies. The last ones are kept for their impulses.
+// A sleeping body has none with the ground, fixed bodies or other sleeping ones; one found with
+// an awake body or a particle wakes its island, and they are found again (sleep.h).
 void World::find_contacts(double reach) {
     std::swap(previous_contacts_, contacts_);
+    generate_contacts(reach);
+    while (wake_touched_islands()) generate_contacts(reach);
+}
+
+void World::generate_contacts(double reach) {
     contacts_.clear();
     y_contacts_start_ = y_;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (asleep_[b]) continue;
         rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, reach, contacts_);
     }
-    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_);
+    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_, asleep_);
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, reach, contacts_);
     }
@@ -538,7 +581,7 @@ int World::begin_contacts(double interval, int steps) {
 int World::contact_intervals(double time) const {
     double fastest = 0.0;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        if (!rigid_[b].fixed && rigid_[b].shape != ShapeKind::Sphere) fastest = std::max(fastest, length(rigid_motion(b).omega));
+        if (!rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) fastest = std::max(fastest, length(rigid_motion(b).omega));
     }
     const double needed = std::ceil(time * fastest / kMaxContactTurn);
     const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
@@ -568,6 +611,15 @@ void World::tick() {
     // Soft bodies within reach of one another (or of themselves): found before the last
     // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
     soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt, *pool_);
+    // A soft body within reach of a sleeping one wakes it, before anything is found or solved
+    // (its contacts of last tick, the next find's warm start, come back to that list).
+    if (soft_touching_ && sleep_.sleeping > 0) {
+        std::vector<std::uint32_t> islands;
+        soft_contacts_->for_each_rigid_in_reach([&](std::uint32_t r) {
+            if (asleep_[r]) islands.push_back(sleep_.island[r]);
+        });
+        wake_islands(std::move(islands), contacts_);
+    }
     const double dt = params_.dt;
     double left = dt;
     for (bool first = true; left > 1e-9 * dt; first = false) {
@@ -611,6 +663,7 @@ void World::tick() {
     // Listing 9: every few ticks, bring each quaternion back to unit length.
     if (params_.renormalize_every > 0 && ticks_ % std::uint64_t(params_.renormalize_every) == 0) {
         for (std::size_t b = 0; b < rigid_.size(); ++b) {
+            if (asleep_[b]) continue;  // not integrated, nothing to bring back
             double* q = &y_[b * rigid::kStateSize + rigid::Q];
             const Quat unit = Quat{q[0], q[1], q[2], q[3]}.normalized();
             q[0] = unit.w;
@@ -620,6 +673,7 @@ void World::tick() {
         }
     }
     check_divergence();
+    if (status_ == Status::Ok) update_sleep();
     if (status_ != Status::Ok) {
         // Keep the last finite state on show; nothing downstream ever sees a NaN.
         for (SoftBody& body : soft_) {

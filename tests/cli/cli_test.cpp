@@ -399,6 +399,26 @@ TEST(Simulate, ContactsEnergySaysWhatABounceTook) {
     EXPECT_NEAR(e.at("last_second").get<double>(), e.at("total").get<double>(), 1e-9);  // 40 ticks < 1 s
 }
 
+// Sleeping: the summary says how many rigid bodies sleep at the end (and each body whether it
+// does). The bundled pyramid sleeps whole within 2 s; with the key off, none does; and a bad
+// value is refused in one line.
+TEST(Simulate, SleepingBodiesAreCountedAndTheKeyTurnsItOff) {
+    const std::string pyramid = std::string(SOFTBODY_ASSETS) + "/scenes/pyramid.json";
+    const Result on = run({"simulate", "--scene", pyramid, "--seconds", "2"});
+    ASSERT_EQ(on.exit_code, 0) << describe(on);
+    const json j = json::parse(on.out);
+    EXPECT_EQ(j.at("sleeping"), 385);
+    EXPECT_EQ(j.at("rigid_bodies").size(), 385u);
+    EXPECT_EQ(j.at("rigid_bodies")[384].at("asleep"), true);
+    const Result off = run({"simulate", "--scene", "boxes:20", "--seconds", "3", "--set", "sleeping=false"});
+    ASSERT_EQ(off.exit_code, 0) << describe(off);
+    EXPECT_EQ(json::parse(off.out).at("sleeping"), 0);
+    const Result pile = run({"simulate", "--scene", "boxes:20", "--seconds", "3"});
+    ASSERT_EQ(pile.exit_code, 0) << describe(pile);
+    EXPECT_GT(json::parse(pile.out).at("sleeping").get<int>(), 0);
+    expect_refused({"simulate", "--scene", "boxes:20", "--ticks", "1", "--set", "sleeping=sometimes"}, {"sleeping"});
+}
+
 // Explicit Euler gains energy in free rotation (Listing 9): on random scenes it may diverge, and
 // then it says so in one line with exit 3 and a summary of the last good state; never a crash.
 TEST(Simulate, ExplicitEulerOnRandomScenesRunsOrStopsInOneLine) {

@@ -53,6 +53,7 @@ struct Params {
     std::vector<std::uint32_t> pinned;         // vertex indices (0-based, as in the file)
     int max_particles = 3000;                  // particle budget: a larger mesh is simulated on this many; 0: all
     int renormalize_every = 5;                 // ticks between renormalising quaternions (Listing 9); 0: never
+    bool sleeping = true;                      // rigid bodies at rest sleep until touched (World, sleep.h)
 
     bool operator==(const Params&) const = default;
 };

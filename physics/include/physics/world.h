@@ -90,6 +90,17 @@ struct Grab {
     bool operator==(const Grab&) const = default;
 };
 
+// Which rigid bodies sleep, and how long each has been at rest (sleep.h says what these mean).
+// Part of the state a tick carries into the next: a snapshot holds it, so time travel replays
+// a body's falling asleep and waking exactly.
+inline constexpr std::uint32_t kAwake = 0xFFFFFFFFu;
+struct SleepState {
+    std::vector<double> rest_time;        // per rigid body: s its every point has been slower than kSleepSpeed
+    std::vector<std::uint32_t> island;    // per rigid body: kAwake, or the island it sleeps in (its first body's index)
+    std::vector<RigidContact> contacts;   // the sleeping islands' contacts as they fell asleep: their warm start on waking
+    std::size_t sleeping = 0;             // bodies asleep
+};
+
 // Everything a tick carries into the next, copied out (World::snapshot): restored, the world
 // goes on exactly as it did from that moment (the same bits), as long as its keys are the same.
 // The keys themselves, the grab and the bodies' meshes are not part of it.
@@ -107,6 +118,7 @@ struct WorldSnapshot {
     std::string divergence;
     double energy_baseline = 0.0, energy_scale = 0.0;
     bool energy_baseline_stale = true;
+    SleepState sleep;
 
     std::size_t bytes() const;  // the memory it holds
 };
@@ -170,10 +182,8 @@ public:
     // toward a point.
     void set_pinned(std::uint32_t particle, bool pinned);
     bool is_pinned(std::uint32_t particle) const { return body().is_pinned(particle); }
-    void set_grab(std::optional<Grab> grab) {
-        grab_ = grab;
-        energy_baseline_stale_ = true;  // the grab does work on the body
-    }
+    // A grabbed rigid body wakes (with its island), and does not sleep while held.
+    void set_grab(std::optional<Grab> grab);
     const std::optional<Grab>& grab() const { return grab_; }
 
     Status status() const { return status_; }
@@ -190,12 +200,21 @@ public:
     const double* rigid_previous_state(std::size_t i) const { return &y_tick_prev_[i * rigid::kStateSize]; }
     RigidMotion rigid_motion(std::size_t i) const { return softbody::rigid_motion(rigid_[i], rigid_state(i)); }
     // A rigid body's restitution and friction (empty: the world's), from the next contact on.
-    void set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction) {
-        rigid_[i].restitution = restitution;
-        rigid_[i].friction = friction;
-    }
+    // It wakes (with its island).
+    void set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction);
+    // Sleeping (the `sleeping` key, sleep.h): an island of rigid bodies all at rest for a while
+    // sleeps, costs nothing but its broad-phase box, and wakes when touched by an awake body or
+    // a particle, grabbed, or when a key changes.
+    bool rigid_asleep(std::size_t i) const { return sleep_.island[i] != kAwake; }
+    // How long the body has been at rest (every point slower than kSleepSpeed), s; 0 while it moves.
+    double rigid_rest_time(std::size_t i) const { return sleep_.rest_time[i]; }
+    std::size_t sleeping_count() const { return sleep_.sleeping; }
+    // Wakes body i's island (nothing when it is awake).
+    void wake_rigid(std::size_t i);
+    void wake_all();
     // Contacts of the last step: rigid bodies with the ground and with one another, and soft
-    // bodies' particles with rigid bodies (RigidContact::soft).
+    // bodies' particles with rigid bodies (RigidContact::soft). A sleeping island's are not
+    // among them (they are not solved).
     const std::vector<RigidContact>& contacts() const { return contacts_; }
     // Soft bodies' particles against other soft bodies' surfaces (and their own, with
     // self_collision) that pushed in the last substep.
@@ -249,6 +268,11 @@ private:
     void step(float h);
     int rotation_substeps(double time) const;
     void find_contacts(double reach);
+    void generate_contacts(double reach);
+    void reset_sleep();
+    bool wake_touched_islands();
+    void wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidContact>& warm);
+    void update_sleep();
     int begin_contacts(double interval, int steps);
     int contact_intervals(double time) const;
     ContactWorld contact_world();
@@ -289,6 +313,8 @@ private:
     Status status_ = Status::Ok;
     std::string divergence_;
     std::optional<Grab> grab_;
+    SleepState sleep_;
+    std::vector<std::uint8_t> asleep_;  // per rigid body: 1 while it sleeps (sleep_.island != kAwake), for the loops
 
     // Energy at the last outside change (reset, params, pins, grab), for divergence detection.
     double energy_baseline_ = 0.0;  // total energy then, J

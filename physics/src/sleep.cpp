@@ -1,0 +1,167 @@
+// Islands of rigid bodies and their sleep: World's members for it (sleep.h says what they do).
+#include "sleep.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "physics/world.h"
+#include "soft_contacts.h"
+
+namespace softbody {
+
+namespace {
+
+// Union-find over the rigid bodies, the lower index the root (so an island's root is its first
+// body, whatever order the unions came in).
+struct Islands {
+    std::vector<std::uint32_t> parent;
+    explicit Islands(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    std::uint32_t find(std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(std::uint32_t a, std::uint32_t b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+}  // namespace
+
+void World::reset_sleep() {
+    sleep_.rest_time.assign(rigid_.size(), 0.0);
+    sleep_.island.assign(rigid_.size(), kAwake);
+    sleep_.contacts.clear();
+    sleep_.sleeping = 0;
+    asleep_.assign(rigid_.size(), 0);
+}
+
+// Every body of the islands named wakes, its rest time back to 0; their contacts as they fell
+// asleep go to `warm`, the contacts the solver warm-starts from.
+void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidContact>& warm) {
+    if (islands.empty() || sleep_.sleeping == 0) return;
+    std::sort(islands.begin(), islands.end());
+    islands.erase(std::unique(islands.begin(), islands.end()), islands.end());
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (!asleep_[b] || !std::binary_search(islands.begin(), islands.end(), sleep_.island[b])) continue;
+        sleep_.island[b] = kAwake;
+        sleep_.rest_time[b] = 0.0;
+        asleep_[b] = 0;
+        --sleep_.sleeping;
+    }
+    // Those of bodies now awake go; the rest stay, in their order.
+    const auto awake = std::stable_partition(sleep_.contacts.begin(), sleep_.contacts.end(),
+                                             [&](const RigidContact& c) { return asleep_[c.a] != 0; });
+    warm.insert(warm.end(), awake, sleep_.contacts.end());
+    sleep_.contacts.erase(awake, sleep_.contacts.end());
+}
+
+void World::wake_rigid(std::size_t i) {
+    if (i < rigid_.size() && asleep_[i]) wake_islands({sleep_.island[i]}, contacts_);
+}
+
+void World::wake_all() {
+    if (sleep_.sleeping == 0) return;
+    std::vector<std::uint32_t> islands;
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (asleep_[b]) islands.push_back(sleep_.island[b]);
+    }
+    wake_islands(std::move(islands), contacts_);
+}
+
+// After contacts are found: a sleeping body in one of them met an awake body or a particle
+// (contacts between two sleeping bodies, or a sleeping body and a fixed one or the ground, are
+// never made), so its island wakes. The woken islands' contacts go to the last tick's list, which
+// the solver warm-starts from. True when any woke: their contacts are to be found now.
+bool World::wake_touched_islands() {
+    if (sleep_.sleeping == 0) return false;
+    std::vector<std::uint32_t> islands;
+    for (const RigidContact& c : contacts_) {
+        if (c.soft < 0 && asleep_[c.a]) islands.push_back(sleep_.island[c.a]);
+        if (c.b >= 0 && asleep_[std::size_t(c.b)]) islands.push_back(sleep_.island[std::size_t(c.b)]);
+    }
+    if (islands.empty()) return false;
+    wake_islands(std::move(islands), previous_contacts_);
+    return true;
+}
+
+// At the end of a tick: each awake body's rest time, the islands, and those that fall asleep.
+void World::update_sleep() {
+    const std::size_t n = rigid_.size();
+    if (n == 0) return;
+    const double dt = params_.dt;
+    // Bodies still being pushed out of an overlap deeper than a loaded contact stands.
+    std::vector<std::uint8_t> overlapping(n, 0);
+    for (const RigidContact& c : contacts_) {
+        if (c.soft >= 0 || !(c.depth > kSleepDepth)) continue;
+        overlapping[c.a] = 1;
+        if (c.b >= 0) overlapping[std::size_t(c.b)] = 1;
+    }
+    bool any_rested = false;
+    for (std::size_t b = 0; b < n; ++b) {
+        if (rigid_[b].fixed || asleep_[b]) continue;
+        const RigidMotion m = rigid_motion(b);
+        const double speed = length(m.v) + length(m.omega) * rigid_[b].bounding_radius;
+        sleep_.rest_time[b] = speed < kSleepSpeed && !overlapping[b] ? sleep_.rest_time[b] + dt : 0.0;
+        any_rested = any_rested || sleep_.rest_time[b] >= kTimeToSleep;
+    }
+    if (!params_.sleeping || !any_rested) return;
+
+    // The islands of the awake bodies, what leans on something fixed, and what is held.
+    Islands islands(n);
+    std::vector<std::uint8_t> supported(n, 0), held(n, 0);
+    const auto dynamic = [&](std::int64_t b) { return b >= 0 && !rigid_[std::size_t(b)].fixed; };
+    for (const RigidContact& c : contacts_) {
+        if (c.soft >= 0) {
+            if (c.b >= 0) held[std::size_t(c.b)] = 1;  // a particle on it
+        } else if (dynamic(c.b)) {
+            islands.unite(c.a, std::uint32_t(c.b));
+        } else {
+            supported[c.a] = 1;  // the ground, or a fixed body
+        }
+    }
+    if (soft_touching_) soft_contacts_->for_each_rigid_in_reach([&](std::uint32_t r) { held[r] = 1; });
+    for (const Link& link : links_) {
+        const LinkEnd* ends[2] = {&link.a, &link.b};
+        for (int e = 0; e < 2; ++e) {
+            const LinkEnd& end = *ends[e];
+            const LinkEnd& other = *ends[1 - e];
+            if (end.kind != LinkEnd::Kind::Rigid || !dynamic(end.body)) continue;
+            if (other.kind == LinkEnd::Kind::Soft) held[end.body] = 1;
+            else if (other.kind == LinkEnd::Kind::World || !dynamic(other.body)) supported[end.body] = 1;
+            else islands.unite(end.body, other.body);
+        }
+    }
+    if (grab_ && grab_->rigid && grab_->body < n) held[grab_->body] = 1;
+
+    // An island sleeps when all its bodies have rested long enough, something fixed bears it,
+    // and nothing that never sleeps holds it.
+    std::vector<std::uint8_t> ready(n, 1), leans(n, 0);
+    for (std::size_t b = 0; b < n; ++b) {
+        if (rigid_[b].fixed || asleep_[b]) continue;
+        const std::uint32_t root = islands.find(std::uint32_t(b));
+        if (sleep_.rest_time[b] < kTimeToSleep || held[b]) ready[root] = 0;
+        if (supported[b]) leans[root] = 1;
+    }
+    bool fell = false;
+    for (std::size_t b = 0; b < n; ++b) {
+        if (rigid_[b].fixed || asleep_[b]) continue;
+        const std::uint32_t root = islands.find(std::uint32_t(b));
+        if (!ready[root] || !leans[root]) continue;
+        sleep_.island[b] = root;
+        asleep_[b] = 1;
+        ++sleep_.sleeping;
+        double* y = &y_[b * rigid::kStateSize];
+        for (int k = 0; k < 3; ++k) y[rigid::P + k] = y[rigid::L + k] = 0.0;
+        fell = true;
+    }
+    if (!fell) return;
+    // Their contacts are set aside, to warm-start the solver when they wake.
+    const auto asleep = std::stable_partition(contacts_.begin(), contacts_.end(),
+                                              [&](const RigidContact& c) { return c.soft >= 0 || !asleep_[c.a]; });
+    sleep_.contacts.insert(sleep_.contacts.end(), asleep, contacts_.end());
+    contacts_.erase(asleep, contacts_.end());
+}
+
+}  // namespace softbody

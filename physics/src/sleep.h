@@ -1,0 +1,54 @@
+// Internal to the physics library: islands of rigid bodies, and their sleep (World's members in
+// sleep.cpp; the state, SleepState, in world.h).
+//
+// Islands: rigid bodies joined by the tick's contacts (every contact found, a speculative one
+// within reach included) and by springs between two of them. Fixed bodies and the ground join
+// nothing: two boxes resting side by side on the floor are two islands.
+//
+// A body is at rest while every point of it is slower than kSleepSpeed: |v| + |w| r < kSleepSpeed,
+// r its bounding radius (the bench's measure of "moving", app/soundness.h), and none of its
+// contacts is deeper than kSleepDepth. Its rest time counts up by dt each tick it is, and falls
+// back to 0 the tick it is not.
+//
+// An island falls asleep at the end of a tick when
+//   - every body in it has been at rest for kTimeToSleep,
+//   - it leans on something that does not move: a contact with the ground or a fixed body, or a
+//     spring to a fixed point (a body drifting slowly through empty space is not at rest, it
+//     is in motion that nothing will stop: it never sleeps),
+//   - nothing that never sleeps holds it: no soft body's particle or triangle within reach, no
+//     spring to a soft body, no grab.
+// Its bodies' P and L become exactly 0, and its contacts are set aside (SleepState::contacts).
+// A sleeping body is not integrated, has no contacts found with the ground, fixed or other
+// sleeping bodies, and is in no solver: it costs its box in the broad phase and nothing else.
+//
+// An island wakes (every body in it, rest times back to 0, its contacts back as the warm start
+// of the solver, so a stack picks up the impulses that held it) when
+//   - a contact is found between one of its bodies and an awake body or a soft body's particle,
+//     or a soft body's triangle comes within reach of one (the tick it happens, before its
+//     contacts are solved: they are found again with the island awake),
+//   - the app grabs one of its bodies (World::set_grab) or sets its material,
+//   - any key changes (set_params, set_body_params): every island wakes.
+// With `sleeping` false nothing falls asleep (the rest times still count, for the inspector).
+//
+// Nothing here depends on the thread count, and an island whose bodies never come to rest never
+// sleeps: such a scene runs bit for bit as it does with `sleeping` off.
+#pragma once
+
+namespace softbody {
+
+// m/s: a point slower than this is at rest. 5 cm/s (Box2D's choice too): a box sliding this
+// slowly on friction 0.4 stops within v^2 / (2 mu g) = 0.3 mm anyway, and one lifted this fast
+// rises 0.13 mm, so a body this slow for half a second is resting, not on its way anywhere; and
+// a pile's bodies, held by many contacts, keep a jitter of a few cm/s that a lower threshold
+// would not let sleep (measured: README, "Choices the physics makes").
+inline constexpr double kSleepSpeed = 0.05;
+// m: a body with a contact deeper than this is not at rest, however slow: it is still being
+// pushed out of an overlap, slowly (the push apart is overdamped, contact_solver.h), and asleep
+// it would stay that deep. Resting contacts in a pile of
+// boxes stand up to 1 to 2 mm deep (measured: with 1 mm here, 56 of the 100 boxes of the pile
+// in tests/physics/sleep_test.cpp sleep after 10 s; with 2 mm, over 90).
+inline constexpr double kSleepDepth = 2e-3;
+// s: how long every body of an island is at rest before it sleeps.
+inline constexpr double kTimeToSleep = 0.5;
+
+}  // namespace softbody

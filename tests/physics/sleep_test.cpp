@@ -1,0 +1,375 @@
+// Islands and sleeping (physics/src/sleep.h): a pyramid stands and sleeps, a settled pile
+// sleeps, a ball thrown into it wakes what it touches and they sleep again, the same bits at
+// any thread count and on time travel, and a scene that never comes to rest runs exactly as it
+// does with sleeping off. No test here asserts a speed: what sleeping saves is in the bench.
+#include <cmath>
+#include <set>
+
+#include "physics/error.h"
+#include "physics/generated.h"
+#include "physics/scene_io.h"
+#include "test_support.h"
+
+namespace softbody::test {
+namespace {
+
+constexpr std::uint64_t kTicksPerSecond = 50;  // dt 0.02 s, every scene here
+
+// A body's fastest point: |v| + |w| r (the bench's "moving", app/soundness.h).
+double fastest_point(const World& world, std::size_t b) {
+    const RigidMotion m = world.rigid_motion(b);
+    return length(m.v) + length(m.omega) * world.rigid_body(b).bounding_radius;
+}
+
+std::size_t dynamic_bodies(const World& world) {
+    std::size_t n = 0;
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) n += world.rigid_body(b).fixed ? 0 : 1;
+    return n;
+}
+
+Vec3d position_of(const World& world, std::size_t b) { return world.rigid_motion(b).x; }
+
+// The pyramid: it stands 10 s, its top box within 1 cm of where it started, no box
+// faster than 1 cm/s at any point after 2 s; and it is at rest, so it all sleeps.
+TEST(Sleep, PyramidStandsTenSecondsAndSleeps) {
+    World world(make_world_def(generated_scene("pyramid:10")));
+    ASSERT_EQ(world.rigid_body_count(), 385u);
+    std::size_t top = 0;
+    for (std::size_t b = 1; b < world.rigid_body_count(); ++b) {
+        if (position_of(world, b).z > position_of(world, top).z) top = b;
+    }
+    const Vec3d top_start = position_of(world, top);
+    double fastest_after_2s = 0.0;
+    for (std::uint64_t t = 0; t < 10 * kTicksPerSecond; ++t) {
+        world.tick();
+        ASSERT_EQ(world.status(), Status::Ok) << world.divergence();
+        if (world.ticks() >= 2 * kTicksPerSecond) {
+            for (std::size_t b = 0; b < world.rigid_body_count(); ++b) fastest_after_2s = std::max(fastest_after_2s, fastest_point(world, b));
+        }
+    }
+    EXPECT_LT(length(position_of(world, top) - top_start), 0.01);
+    EXPECT_LT(fastest_after_2s, 0.01);
+    EXPECT_EQ(world.sleeping_count(), 385u);
+    // Asleep, nothing moves: another second changes no bit.
+    const std::uint64_t before = world.state_hash();
+    world.run(kTicksPerSecond);
+    EXPECT_EQ(world.state_hash(), before);
+}
+
+// The bundled pyramid.json is pyramid:10 written out: the same boxes in the same places (to the
+// micrometre its decimals are written to).
+TEST(Sleep, PyramidSceneFileIsTheGeneratedPyramid) {
+    const Scene file = load_scene(std::string(SOFTBODY_ASSETS) + "/scenes/pyramid.json");
+    const Scene made = generated_scene("pyramid:10");
+    ASSERT_EQ(file.rigid_bodies.size(), made.rigid_bodies.size());
+    for (std::size_t b = 0; b < made.rigid_bodies.size(); ++b) {
+        const RigidBodyDef &f = file.rigid_bodies[b], &m = made.rigid_bodies[b];
+        SCOPED_TRACE(m.name);
+        EXPECT_EQ(f.name, m.name);
+        EXPECT_EQ(f.shape, m.shape);
+        EXPECT_EQ(f.size, m.size);
+        EXPECT_EQ(f.density, m.density);
+        EXPECT_EQ(f.friction, m.friction);
+        EXPECT_EQ(f.restitution, m.restitution);
+        ASSERT_TRUE(f.position && m.position);
+        EXPECT_LT(length(*f.position - *m.position), 1e-6);
+    }
+}
+
+// boxes:100 with each ball made a box of its size: a pile of 100 boxes. (The balls of boxes:100
+// roll and spin on: nothing in the contact model resists a ball's rolling, or its spin about the
+// normal of its one contact point, and a ball that rolls keeps its island awake; README,
+// "Islands and sleeping".)
+Scene box_pile() {
+    Scene scene = generated_scene("boxes:100");
+    for (RigidBodyDef& def : scene.rigid_bodies) {
+        if (def.shape != ShapeKind::Sphere) continue;
+        def.shape = ShapeKind::Box;
+        def.size = Vec3d{2.0 * *def.radius, 2.0 * *def.radius, 2.0 * *def.radius};
+        def.radius.reset();
+    }
+    return scene;
+}
+
+// A ball dropped into a settled pile from above its middle, at 4 m/s: the pile's state with one
+// body more (the app's Add menu does the same: World::restore with more_bodies).
+struct Pile {
+    Scene scene = box_pile();
+    std::unique_ptr<World> world;
+    explicit Pile(int threads = 1) : world(std::make_unique<World>(make_world_def(scene), WorldOptions{threads})) {}
+    std::size_t throw_ball() {
+        Vec3d centre;
+        double top = 0.0;
+        std::size_t n = 0;
+        for (std::size_t b = 0; b < world->rigid_body_count(); ++b) {
+            if (world->rigid_body(b).fixed) continue;
+            const Vec3d x = position_of(*world, b);
+            centre += x;
+            top = std::max(top, x.z);
+            ++n;
+        }
+        centre = centre / double(n);
+        RigidBodyDef ball;
+        ball.name = "thrown";
+        ball.shape = ShapeKind::Sphere;
+        ball.radius = 0.15;
+        ball.density = 1000.0;
+        ball.position = Vec3d{centre.x, centre.y, top + 0.6};
+        ball.velocity = Vec3d{0.0, 0.0, -4.0};
+        Scene more = scene;
+        more.rigid_bodies.push_back(ball);
+        const WorldSnapshot now = world->snapshot();
+        auto bigger = std::make_unique<World>(make_world_def(more), WorldOptions{world->threads()});
+        bigger->restore(now, true);
+        world = std::move(bigger);
+        scene = more;
+        return world->rigid_body_count() - 1;
+    }
+};
+
+TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) {
+    Pile pile;
+    pile.world->run(10 * kTicksPerSecond);
+    World* world = pile.world.get();
+    ASSERT_EQ(world->status(), Status::Ok) << world->divergence();
+    const std::size_t bodies = dynamic_bodies(*world);
+    std::printf("a pile of %zu boxes after 10 s: %zu asleep\n", bodies, world->sleeping_count());
+    EXPECT_GE(world->sleeping_count() * 10, bodies * 9) << world->sleeping_count() << " of " << bodies << " asleep";
+    // A sleeping body is still: its P and L are 0.
+    for (std::size_t b = 0; b < world->rigid_body_count(); ++b) {
+        if (world->rigid_asleep(b)) {
+            EXPECT_EQ(fastest_point(*world, b), 0.0);
+        }
+    }
+
+    std::vector<bool> asleep_before(world->rigid_body_count());
+    for (std::size_t b = 0; b < asleep_before.size(); ++b) asleep_before[b] = world->rigid_asleep(b);
+    const std::size_t ball = pile.throw_ball();
+    world = pile.world.get();
+    EXPECT_FALSE(world->rigid_asleep(ball));
+    for (std::size_t b = 0; b < asleep_before.size(); ++b) EXPECT_EQ(world->rigid_asleep(b), asleep_before[b]) << b;
+    // Every body the ball touches is awake in the tick it does, and had been asleep: it woke.
+    std::set<std::size_t> touched, woke;
+    for (std::uint64_t t = 0; t < 10 * kTicksPerSecond; ++t) {
+        world->tick();
+        ASSERT_EQ(world->status(), Status::Ok) << world->divergence();
+        for (const RigidContact& c : world->contacts()) {
+            if (c.soft >= 0) continue;
+            const std::int64_t other = c.a == ball ? c.b : std::int64_t(c.b) == std::int64_t(ball) ? std::int64_t(c.a) : -1;
+            if (other < 0 || world->rigid_body(std::size_t(other)).fixed) continue;
+            touched.insert(std::size_t(other));
+        }
+        for (std::size_t b = 0; b < asleep_before.size(); ++b) {
+            if (asleep_before[b] && !world->rigid_asleep(b)) woke.insert(b);
+        }
+    }
+    ASSERT_FALSE(touched.empty()) << "the ball touched no body of the pile";
+    for (std::size_t b : touched) {
+        if (asleep_before[b]) {
+            EXPECT_TRUE(woke.count(b)) << "body " << b << " was touched and never woke";
+        }
+    }
+    // ... and 10 s later the pile, the ball and what it woke have settled and sleep again.
+    std::printf("the ball touched %zu bodies, %zu woke; 10 s on, %zu of %zu asleep\n", touched.size(), woke.size(),
+                world->sleeping_count(), dynamic_bodies(*world));
+    EXPECT_GE(world->sleeping_count() * 10, dynamic_bodies(*world) * 9) << world->sleeping_count() << " asleep";
+    std::size_t woke_asleep = 0;
+    for (std::size_t b : woke) woke_asleep += world->rigid_asleep(b) ? 1 : 0;
+    EXPECT_GE(woke_asleep * 10, woke.size() * 9) << woke_asleep << " of the " << woke.size() << " woken asleep again";
+}
+
+// The same bits at 1, 2 and 3 threads, through falling asleep, a throw that wakes, and sleeping
+// again; and the same islands asleep.
+TEST(Sleep, SameHashAndSleepersAtOneTwoAndThreeThreads) {
+    std::uint64_t hash[3] = {};
+    std::size_t sleeping[3] = {};
+    for (int threads = 1; threads <= 3; ++threads) {
+        Pile pile(threads);
+        pile.world->run(6 * kTicksPerSecond);
+        pile.throw_ball();
+        pile.world->run(3 * kTicksPerSecond);
+        ASSERT_EQ(pile.world->status(), Status::Ok);
+        hash[threads - 1] = pile.world->state_hash();
+        sleeping[threads - 1] = pile.world->sleeping_count();
+    }
+    EXPECT_GT(sleeping[0], 0u);
+    EXPECT_EQ(hash[0], hash[1]);
+    EXPECT_EQ(hash[0], hash[2]);
+    EXPECT_EQ(sleeping[0], sleeping[1]);
+    EXPECT_EQ(sleeping[0], sleeping[2]);
+}
+
+// Time travel: restored to a moment with bodies asleep, the world goes on to the same bits, the
+// same bodies falling asleep and waking.
+TEST(Sleep, RestoredSnapshotReplaysTheSameSleep) {
+    Pile pile;
+    World& world = *pile.world;
+    world.run(5 * kTicksPerSecond);
+    const WorldSnapshot then = world.snapshot();
+    ASSERT_GT(world.sleeping_count(), 0u);
+    ASSERT_LT(world.sleeping_count(), dynamic_bodies(world));  // some still settling: more sleep later
+    world.run(5 * kTicksPerSecond);
+    const std::uint64_t hash = world.state_hash();
+    const std::size_t sleeping = world.sleeping_count();
+    std::vector<bool> asleep(world.rigid_body_count());
+    for (std::size_t b = 0; b < asleep.size(); ++b) asleep[b] = world.rigid_asleep(b);
+
+    world.restore(then);
+    world.run(5 * kTicksPerSecond);
+    EXPECT_EQ(world.state_hash(), hash);
+    EXPECT_EQ(world.sleeping_count(), sleeping);
+    for (std::size_t b = 0; b < asleep.size(); ++b) EXPECT_EQ(world.rigid_asleep(b), asleep[b]) << b;
+    // And in another world built from the same scene.
+    World other(make_world_def(pile.scene));
+    other.restore(then);
+    other.run(5 * kTicksPerSecond);
+    EXPECT_EQ(other.state_hash(), hash);
+}
+
+// Bodies that never come to rest: boxes and balls sliding, spinning and rolling on a frictionless
+// ground (two at 6 cm/s, just over the 5 cm/s threshold), and a box falling past them from high up.
+// Their rest times never fill, nothing sleeps, and every bit is as with sleeping off.
+TEST(Sleep, SceneInConstantMotionRunsAsWithSleepingOff) {
+    Scene scene;
+    scene.params.dynamic_friction = 0.0f;
+    scene.params.static_friction = 0.0f;
+    const auto add = [&](ShapeKind shape, Vec3d at, Vec3d v, Vec3d w) {
+        RigidBodyDef def;
+        def.name = "body" + std::to_string(scene.rigid_bodies.size());
+        def.shape = shape;
+        if (shape == ShapeKind::Sphere) def.radius = 0.2;
+        else def.size = Vec3d{0.4, 0.3, 0.2};
+        def.position = at;
+        def.velocity = v;
+        def.angular_velocity = w;
+        def.friction = 0.0f;
+        scene.rigid_bodies.push_back(def);
+    };
+    add(ShapeKind::Box, {0, 0, 0.1}, {0.06, 0, 0}, {0, 0, 0});
+    add(ShapeKind::Box, {0, 2, 0.1}, {0, -0.06, 0}, {0, 0, 0});
+    add(ShapeKind::Box, {3, 0, 0.1}, {0, 0, 0}, {0, 0, 0.5});
+    add(ShapeKind::Sphere, {-3, 0, 0.2}, {0.5, 0.5, 0}, {0, 0, 0});
+    add(ShapeKind::Box, {6, 6, 400}, {0, 0, 0}, {0, 0, 0});
+    Scene off = scene;
+    off.params.sleeping = false;
+    World on_world(make_world_def(scene)), off_world(make_world_def(off));
+    for (std::uint64_t t = 0; t < 8 * kTicksPerSecond; ++t) {
+        on_world.tick();
+        off_world.tick();
+        ASSERT_EQ(on_world.sleeping_count(), 0u) << "at tick " << t;
+    }
+    ASSERT_EQ(on_world.status(), Status::Ok);
+    EXPECT_EQ(on_world.state_hash(), off_world.state_hash());
+    // The slow ones did move all along: 6 cm/s for 8 s.
+    EXPECT_NEAR(position_of(on_world, 0).x, 0.48, 1e-3);
+}
+
+// A box drifting slowly through empty space (no gravity, no ground) is in motion nothing will
+// stop: it leans on nothing, so it never sleeps however slow it is.
+TEST(Sleep, BodyDriftingThroughEmptySpaceNeverSleeps) {
+    Scene scene;
+    scene.params.gravity = {0.0f, 0.0f, 0.0f};
+    scene.params.ground = false;
+    RigidBodyDef box;
+    box.name = "drifter";
+    box.size = Vec3d{0.5, 0.5, 0.5};
+    box.velocity = Vec3d{0.005, 0.0, 0.0};
+    scene.rigid_bodies.push_back(box);
+    World world(make_world_def(scene));
+    world.run(5 * kTicksPerSecond);
+    EXPECT_FALSE(world.rigid_asleep(0));
+    EXPECT_GE(world.rigid_rest_time(0), 4.9);  // slow all along: only leaning on nothing keeps it awake
+    EXPECT_NEAR(position_of(world, 0).x, 0.025, 1e-9);
+}
+
+// A resting box sleeps; grabbing it, changing a key or its material wakes it; with the key
+// `sleeping` off nothing sleeps.
+TEST(Sleep, GrabKeysAndMaterialWakeAndTheKeyTurnsItOff) {
+    Scene scene;
+    RigidBodyDef box;
+    box.name = "crate";
+    box.size = Vec3d{0.5, 0.5, 0.5};
+    box.position = Vec3d{0.0, 0.0, 0.25};
+    scene.rigid_bodies.push_back(box);
+    box.name = "on_top";
+    box.position = Vec3d{0.0, 0.0, 0.75};
+    scene.rigid_bodies.push_back(box);
+    World world(make_world_def(scene));
+    world.run(kTicksPerSecond);
+    ASSERT_TRUE(world.rigid_asleep(0));
+    ASSERT_TRUE(world.rigid_asleep(1));  // one island: the crate and the box on it
+
+    Grab grab;
+    grab.rigid = true;
+    grab.body = 1;
+    grab.target = {0.0f, 0.0f, 0.75f};
+    world.set_grab(grab);
+    EXPECT_FALSE(world.rigid_asleep(0));  // its whole island
+    EXPECT_FALSE(world.rigid_asleep(1));
+    world.run(kTicksPerSecond);
+    EXPECT_FALSE(world.rigid_asleep(1));  // held: never asleep while grabbed
+    world.set_grab(std::nullopt);
+    world.run(kTicksPerSecond);
+    ASSERT_TRUE(world.rigid_asleep(1));
+
+    world.set_rigid_material(0, 0.5f, std::nullopt);
+    EXPECT_FALSE(world.rigid_asleep(0));
+    EXPECT_FALSE(world.rigid_asleep(1));
+    world.run(kTicksPerSecond);
+    ASSERT_TRUE(world.rigid_asleep(0));
+
+    Params params = world.params();
+    params.dynamic_friction = 0.5f;
+    world.set_params(params);
+    EXPECT_EQ(world.sleeping_count(), 0u);
+    world.set_params(params);  // the same keys again: nothing changed, nothing to wake for
+    world.run(kTicksPerSecond);
+    ASSERT_EQ(world.sleeping_count(), 2u);
+    world.set_params(params);
+    EXPECT_EQ(world.sleeping_count(), 2u);
+
+    params.sleeping = false;
+    world.set_params(params);
+    EXPECT_EQ(world.sleeping_count(), 0u);
+    world.run(3 * kTicksPerSecond);
+    EXPECT_EQ(world.sleeping_count(), 0u);
+    EXPECT_GE(world.rigid_rest_time(0), 2.9);  // at rest all the same
+}
+
+// A soft body landing on a sleeping box wakes it (soft bodies never sleep).
+TEST(Sleep, SoftBodyLandingOnASleepingBoxWakesIt) {
+    Scene scene = generated_scene("ball:1");
+    scene.params.position = Vec3{0.0f, 0.0f, 4.0f};
+    scene.params.stiffness = 2000.0f;
+    RigidBodyDef box;
+    box.name = "crate";
+    box.size = Vec3d{1.0, 1.0, 0.5};
+    box.position = Vec3d{0.0, 0.0, 0.25};
+    scene.rigid_bodies.push_back(box);
+    World world(make_world_def(scene));
+    bool slept = false, woke = false;
+    for (std::uint64_t t = 0; t < 2 * kTicksPerSecond && !woke; ++t) {
+        world.tick();
+        ASSERT_EQ(world.status(), Status::Ok);
+        slept = slept || world.rigid_asleep(0);
+        woke = slept && !world.rigid_asleep(0);
+    }
+    EXPECT_TRUE(slept);
+    EXPECT_TRUE(woke);
+    float lowest = 1e9f;
+    for (std::size_t i = 0; i < world.particle_count(); ++i) lowest = std::min(lowest, world.positions()[i].z);
+    EXPECT_LT(lowest, 1.0f);  // it woke as the ball reached it, not while it fell from 3.5 m
+}
+
+TEST(Sleep, KeyIsCheckedLikeAnyOther) {
+    Params p;
+    set_param(p, "sleeping", "false");
+    EXPECT_FALSE(p.sleeping);
+    EXPECT_EQ(param_text(p, "sleeping"), "false");
+    EXPECT_REFUSED_NAMING(set_param(p, "sleeping", "maybe"), "'sleeping'");
+    EXPECT_REFUSED_NAMING(parse_scene("{\"sleeping\": 1}", "s.json"), "s.json:1", "'sleeping'");
+    EXPECT_FALSE(parse_scene("{\"sleeping\": false}", "s.json").params.sleeping);
+}
+
+}  // namespace
+}  // namespace softbody::test
