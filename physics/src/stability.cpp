@@ -82,11 +82,14 @@ Stability mode_stability(double lambda, double k, double c, const Params& world,
     constexpr double kTolerance = 1e-9;  // an undamped mode under Verlet sits at exactly 1
     s.growth = growth(world.integrator, s.h, lambda, k, c);
     s.stable = s.growth <= 1.0 + kTolerance;
-    // Fewest substeps stable with a 25% margin on lambda (about 12% on omega): stretched springs
-    // stiffen a little, and a run right at the limit would sit on the edge of growing.
+    // Fewest substeps stable with springs 25% stiffer (about 12% on omega): stretched and bent
+    // springs stiffen a little, and a run right at the limit would sit on the edge of growing.
+    // Stiffer, not more modes: the dampers do not stiffen with them, which is what explicit
+    // Euler's limit (c >= h k, whatever the mode) needs a margin on (two soft balls squashed
+    // head-on grew from a step at exactly that limit).
     s.substeps_needed = 0;
     for (int sub = 1; sub <= 1000; ++sub) {
-        if (growth(world.integrator, dt / sub, 1.25 * lambda, k, c) <= 1.0 + kTolerance) {
+        if (growth(world.integrator, dt / sub, lambda, 1.25 * k, c) <= 1.0 + kTolerance) {
             s.substeps_needed = sub;
             break;
         }
