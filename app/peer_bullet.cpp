@@ -66,6 +66,14 @@ btScalar combined_friction(const btCollisionObject* a, const btCollisionObject* 
     return std::sqrt(a->getFriction() * b->getFriction());
 }
 
+// Rolling and spinning friction as softbody mixes rolling resistance: the larger of the two.
+btScalar combined_rolling(const btCollisionObject* a, const btCollisionObject* b) {
+    return std::max(a->getRollingFriction(), b->getRollingFriction());
+}
+btScalar combined_spinning(const btCollisionObject* a, const btCollisionObject* b) {
+    return std::max(a->getSpinningFriction(), b->getSpinningFriction());
+}
+
 enum class Config { Iterations, Substeps, Sleeping };
 const char* label(Config c) {
     switch (c) {
@@ -151,6 +159,10 @@ Run run(const Scene& scene, const WorldDef& def, Config config, double seconds, 
         info.m_startWorldTransform = start;
         info.m_restitution = body.restitution.value_or(p.restitution);
         info.m_friction = body.friction.value_or(p.dynamic_friction);
+        // Rolling resistance: softbody's torque limit C_rr r |F_n| is Bullet's rolling (and
+        // spinning) friction, a length times the normal impulse, at C_rr r.
+        info.m_rollingFriction = btScalar(double(body.rolling_resistance) * body.rolling_radius);
+        info.m_spinningFriction = info.m_rollingFriction;
         auto rb = std::make_unique<btRigidBody>(info);
         if (!body.fixed) {
             rb->setLinearVelocity(bt(m.v));
@@ -261,6 +273,8 @@ int peer(int argc, char** argv) {
 
     gCalculateCombinedRestitutionCallback = combined_restitution;
     gCalculateCombinedFrictionCallback = combined_friction;
+    gCalculateCombinedRollingFrictionCallback = combined_rolling;
+    gCalculateCombinedSpinningFrictionCallback = combined_spinning;
     for (Config config : configs) {
         const Run r = run(scene, def, config, seconds, is_pyramid(scene_name));
         const Soundness& s = r.figures;

@@ -30,6 +30,16 @@ constexpr double kSpeculative = 1e-6;
 // Two points of a pair of bodies, a tick apart, this close are the same contact (m).
 constexpr double kSamePoint = 5e-3;
 
+// The least work worth handing to another thread: bodies (a free turn each, in the positions)
+// and manifolds (one pass of a block solve each). Fewer run on the calling thread; a colour with
+// fewer than twice kManifoldGrain manifolds too. Which thread runs what never changes the bits.
+constexpr std::size_t kBodyGrain = 32;
+constexpr std::size_t kManifoldGrain = 16;
+
+// Colours a manifold may take (colour()): one bit each of a body's mask. Manifolds that find
+// none free go to one more group, solved in order on one thread.
+constexpr int kColours = 64;
+
 Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 
 // q turned further by the small turn theta (world axes), its length kept.
@@ -218,6 +228,7 @@ void ContactSolver::setup(Manifold& m) {
     const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
     m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
     if (m.twist_mass == 0.0) m.twist = 0.0;  // one point (or none turning): no turn to hold
+    m.roll_mass = m.roll_arm > 0.0 ? (A.inv_I + B.inv_I).inverse() : Mat3{};
     // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
     for (int x = 0; x < n; ++x) {
         for (int y = 0; y < n; ++y) {
@@ -382,6 +393,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         // for one already sliding: particle_contacts.h); a rigid body has one mu.
         m.mu = first.soft >= 0 ? first.static_friction : first.friction;
         m.e = first.restitution;
+        m.roll_arm = first.rolling;
         m.first = std::uint32_t(i);
         std::size_t end = i + 1;
         if (first.soft < 0) {
@@ -407,12 +419,16 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
                 m.friction[0] += before->warm_tangent[0] * h_;
                 m.friction[1] += before->warm_tangent[1] * h_;
                 m.twist += before->warm_twist * h_;
+                m.roll += before->warm_roll * h_;
             }
         }
-        setup(m);
         manifolds_.push_back(m);
         i = end;
     }
+    pool_ = world.pool;
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
+
+    colour();
 
     // Islands: bodies joined by this tick's contacts (the static world joins nothing; a soft
     // body's particles are one body here). Restitution's energy is bounded per island.
@@ -454,7 +470,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             v = {q.vx[s.index], q.vy[s.index], q.vz[s.index]};
         }
     };
-    for (const Manifold& m : manifolds_) {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
         Vec3d v_a, w_a, v_b, w_b;
         velocity(bodies_[m.a], v_a, w_a);
         velocity(bodies_[m.b], v_b, w_b);
@@ -462,7 +479,74 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             Point& p = points_[k];
             p.v_n0 = dot(v_a - v_b, m.n) + dot(w_a, p.c_a) - dot(w_b, p.c_b);
         }
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Both cores
+// ---------------------------------------------------------------------------------------------
+
+template <class F>
+void ContactSolver::parallel(std::size_t count, std::size_t grain, const F& f) {
+    const std::size_t threads = pool_ ? std::size_t(pool_->threads()) : 1;
+    if (threads == 1 || count < 2 * grain) {
+        for (std::size_t i = 0; i < count; ++i) f(i);
+        return;
     }
+    // A few chunks a thread, so that one thread held up by the host does not hold the rest.
+    const std::size_t chunks = std::min((count + grain - 1) / grain, 4 * threads);
+    pool_->run(chunks, [&](std::size_t c) {
+        const std::size_t end = count * (c + 1) / chunks;
+        for (std::size_t i = count * c / chunks; i < end; ++i) f(i);
+    });
+}
+
+// Gauss-Seidel, as Box2D v3 runs it on many cores: the manifolds in colours, no two of a colour
+// sharing a moving body (the static world is shared by all: nothing of it changes), so that a
+// colour's manifolds can be solved at once, each reading and writing only its own two bodies.
+// The order is colour after colour, whatever the thread count: the same bits at any.
+template <class F>
+void ContactSolver::each_coloured(const F& f) {
+    for (std::size_t c = 0; c + 1 < colour_start_.size(); ++c) {
+        const std::uint32_t* order = colour_order_.data() + colour_start_[c];
+        const std::size_t count = colour_start_[c + 1] - colour_start_[c];
+        if (c + 2 == colour_start_.size()) {
+            for (std::size_t i = 0; i < count; ++i) f(manifolds_[order[i]]);  // the overflow: in order
+        } else {
+            parallel(count, kManifoldGrain, [&](std::size_t i) { f(manifolds_[order[i]]); });
+        }
+    }
+}
+
+// Each manifold in the manifolds' order takes the first colour neither of its moving bodies has
+// yet (a greedy colouring); colours are then laid out one after another, each in that order.
+// A box in a pile touches six to ten others: about a dozen colours. A rigid body under a soft
+// body's thousand particles runs out of colours: the rest of its manifolds go to the overflow.
+void ContactSolver::colour() {
+    std::vector<std::uint64_t> used(bodies_.size(), 0);
+    std::vector<std::uint8_t> colour_of(manifolds_.size());
+    std::vector<std::uint32_t> count(kColours + 1, 0);
+    for (std::size_t i = 0; i < manifolds_.size(); ++i) {
+        const Manifold& m = manifolds_[i];
+        const std::uint64_t taken = (m.a != 0 ? used[m.a] : 0) | (m.b != 0 ? used[m.b] : 0);
+        const int c = taken == ~std::uint64_t{0} ? kColours : std::countr_zero(~taken);
+        if (c < kColours) {
+            if (m.a != 0) used[m.a] |= std::uint64_t{1} << c;
+            if (m.b != 0) used[m.b] |= std::uint64_t{1} << c;
+        }
+        colour_of[i] = std::uint8_t(c);
+        ++count[std::size_t(c)];
+    }
+    // Empty colours dropped (but the overflow kept last, even empty).
+    colour_start_.assign(1, 0);
+    std::vector<std::uint32_t> at(kColours + 1, 0);
+    for (int c = 0; c <= kColours; ++c) {
+        if (count[std::size_t(c)] == 0 && c < kColours) continue;
+        at[std::size_t(c)] = colour_start_.back();
+        colour_start_.push_back(colour_start_.back() + count[std::size_t(c)]);
+    }
+    colour_order_.resize(manifolds_.size());
+    for (std::size_t i = 0; i < manifolds_.size(); ++i) colour_order_[at[colour_of[i]]++] = std::uint32_t(i);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -474,8 +558,9 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
 // the new velocities): each rigid body's angular velocity is J_world^-1 L with J_world where it
 // was then (refresh) and L after the free step's torques.
 void ContactSolver::load(const ContactWorld& world) {
-    for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        Body& s = bodies_[b];
+    pool_ = world.pool;
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        Body& s = bodies_[i + 1];
         if (s.kind == Body::Kind::Rigid) {
             const double* y = &world.state[s.index * rigid::kStateSize];
             const double* y0 = &world.step_start[s.index * rigid::kStateSize];
@@ -509,7 +594,7 @@ void ContactSolver::load(const ContactWorld& world) {
         }
         s.v = s.v_free;
         s.w = s.w_free;
-    }
+    });
     refresh(world);
 }
 
@@ -523,31 +608,33 @@ void ContactSolver::load(const ContactWorld& world) {
 // again more often: World::contact_intervals.) The body's velocities keep its momenta: w is
 // found again from L = L_free + I (w - w_free), and w_free with it.
 void ContactSolver::refresh(const ContactWorld& world) {
-    bool refreshed = false;
-    for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        Body& s = bodies_[b];
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        Body& s = bodies_[i + 1];
         s.refreshed = false;
-        if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) continue;
+        if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) return;
         const RigidBody& body = world.bodies[s.index];
         const Vec3d L = s.L_free + s.I * (s.w - s.w_free);
         const Mat3 R = rotation_of(s.q_now);
         const Mat3 inv_I = R * body.J_body_inv * R.transposed();
-        if (!(length((inv_I - s.inv_I) * L) * body.bounding_radius > kStaleSpeed)) continue;
+        if (!(length((inv_I - s.inv_I) * L) * body.bounding_radius > kStaleSpeed)) return;
         s.inv_I = inv_I;
         s.I = R * body.J_body * R.transposed();
         s.q_ref = s.q_now;
         s.w = inv_I * L;
         s.w_free = inv_I * s.L_free;
         s.w_start = inv_I * s.L_start;
-        s.refreshed = refreshed = true;
-    }
+        s.refreshed = true;
+    });
+    bool refreshed = false;
+    for (std::size_t b = 1; b < bodies_.size() && !refreshed; ++b) refreshed = bodies_[b].refreshed;
     if (!refreshed) return;
     // Each point of a turned body's manifold: its two anchors where they are (each body's anchor
     // from the start turned with it), and the point between them, where both impulses act (so
     // that they keep the angular momentum about any point exactly).
-    for (Manifold& m : manifolds_) {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        if (!A.refreshed && !B.refreshed) continue;
+        if (!A.refreshed && !B.refreshed) return;
         const auto anchor = [&](const Body& s, const Vec3d& r0) {
             if (s.kind != Body::Kind::Rigid) return s.x;
             return s.x + rotation_of(s.q_now) * (rotation_of(s.q0).transposed() * r0);
@@ -560,13 +647,14 @@ void ContactSolver::refresh(const ContactWorld& world) {
             p.r_b = B.kind == Body::Kind::Rigid ? p.at - B.x : Vec3d{};
         }
         setup(m);
-    }
+    });
 }
 
 // Each point's separation where the bodies are: as the tick began, moved on by each body's
 // move and turn since (the anchors turn with their bodies).
 void ContactSolver::separations() {
-    for (const Manifold& m : manifolds_) {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
@@ -575,7 +663,7 @@ void ContactSolver::separations() {
             if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b0 - p.r_b0;
             p.s = p.s0 + dot(d, m.n);
         }
-    }
+    });
 }
 
 // How far each point's gap closes in the free step, against what its normal velocity at the
@@ -587,7 +675,8 @@ void ContactSolver::separations() {
 // as the motion actually takes it.
 void ContactSolver::free_offsets() {
     const double inv_h = 1.0 / h_;
-    for (const Manifold& m : manifolds_) {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         const double v_lin = dot(A.v_free - B.v_free, m.n);
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
@@ -598,7 +687,7 @@ void ContactSolver::free_offsets() {
             const double closing = (p.s0 + dot(d, m.n) - p.s) * inv_h;
             p.offset = closing - (v_lin + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b));
         }
-    }
+    });
 }
 
 // The work the contacts did on a body since the integrator left it: the impulse m dv at the
@@ -616,129 +705,167 @@ double ContactSolver::work(const Body& s, bool shown) const {
     return W;
 }
 
+void ContactSolver::warm_start(Manifold& m) {
+    Body &A = bodies_[m.a], &B = bodies_[m.b];
+    double sum = 0.0;
+    Vec3d L_a, L_b;
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+        Point& p = points_[k];
+        sum += p.normal_impulse;
+        L_a += p.c_a * p.normal_impulse;
+        L_b += p.c_b * p.normal_impulse;
+        p.total_normal += p.normal_impulse;
+    }
+    const Vec3d j = m.n * sum + m.t[0] * m.friction[0] + m.t[1] * m.friction[1];
+    L_a += m.ft_a[0] * m.friction[0] + m.ft_a[1] * m.friction[1] + m.n * m.twist + m.roll;
+    L_b += m.ft_b[0] * m.friction[0] + m.ft_b[1] * m.friction[1] + m.n * m.twist + m.roll;
+    A.v += j * A.inv_mass;
+    A.w += A.inv_I * L_a;
+    B.v -= j * B.inv_mass;
+    B.w -= B.inv_I * L_b;
+    m.total_friction[0] += m.friction[0];
+    m.total_friction[1] += m.friction[1];
+}
+
 // One pass over every manifold: its normal impulses together toward each point's target, then
 // friction at its centre. `bias`: push overlaps apart (the solve), or not (the relax).
 void ContactSolver::solve(bool bias) {
+    each_coloured([&](Manifold& m) { solve_manifold(m, bias); });
+}
+
+void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     const double inv_h = 1.0 / h_;
-    for (Manifold& m : manifolds_) {
-        if (!bias && m.bouncing) continue;  // it leaves: nothing to relax
-        Body &A = bodies_[m.a], &B = bodies_[m.b];
-        const int n = int(m.count);
-        // Each point's target normal velocity: minus the gap over h where it is still apart
-        // (close it in this substep, no more); where it touches or overlaps, what one step of a
-        // soft spring pushing it out would leave (never faster than push_speed), and in the
-        // relax 0. Touching means closer than kSpeculative: a face resting on another has its
-        // corners at gaps of +-1e-17 m, and treating each by the sign of its rounding would
-        // hold one corner stiffly and the next softly, and turn the face.
-        // The relax leaves a point that is still apart alone: it holds what is touching, and the
-        // next substep's solve stops that point at its surface (held here, it would stop short
-        // of it, and bounce in the air).
-        int index[4], count = 0;
-        for (int i = 0; i < n; ++i) {
-            if (bias || points_[m.first + std::uint32_t(i)].s <= kSpeculative) index[count++] = i;
+    if (!bias && m.bouncing) return;  // it leaves: nothing to relax
+    Body &A = bodies_[m.a], &B = bodies_[m.b];
+    const int n = int(m.count);
+    // Each point's target normal velocity: minus the gap over h where it is still apart
+    // (close it in this substep, no more); where it touches or overlaps, what one step of a
+    // soft spring pushing it out would leave (never faster than push_speed), and in the
+    // relax 0. Touching means closer than kSpeculative: a face resting on another has its
+    // corners at gaps of +-1e-17 m, and treating each by the sign of its rounding would
+    // hold one corner stiffly and the next softly, and turn the face.
+    // The relax leaves a point that is still apart alone: it holds what is touching, and the
+    // next substep's solve stops that point at its surface (held here, it would stop short
+    // of it, and bounce in the air).
+    int index[4], count = 0;
+    for (int i = 0; i < n; ++i) {
+        if (bias || points_[m.first + std::uint32_t(i)].s <= kSpeculative) index[count++] = i;
+    }
+    double target[4] = {0.0, 0.0, 0.0, 0.0};
+    const auto normal_velocity = [&](const Point& p) {
+        return dot(A.v - B.v, m.n) + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
+    };
+    for (int k = 0; k < count; ++k) {
+        const Point& p = points_[m.first + std::uint32_t(index[k])];
+        // The solve moves the positions: its normal velocity is the one that closes the gap
+        // (free_offsets); the relax is of velocities alone.
+        const double v_n = normal_velocity(p);
+        if (p.s > kSpeculative) {
+            target[k] = -p.s * inv_h;
+        } else if (bias) {
+            const Softness& soft = p.softness;
+            const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
+            target[k] = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
         }
-        double target[4] = {0.0, 0.0, 0.0, 0.0};
-        const auto normal_velocity = [&](const Point& p) {
-            return dot(A.v - B.v, m.n) + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
-        };
+    }
+    // The normal impulses toward those targets, together; then friction. Friction at a
+    // point away from the centre of mass turns the body, and so changes the normal
+    // velocities again: for a light body (a coin's rim, 5 mm from its centre) by more than
+    // the normal impulses just did. Then the two again, until the targets hold (at most
+    // kCouplingPasses).
+    for (int pass = 0; pass < kCouplingPasses; ++pass) {
+        double K[4][4], b[4], x[4], lambda[4];
+        for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
+        for (int k = 0; k < count; ++k) {
+            b[k] = target[k] - normal_velocity(points_[m.first + std::uint32_t(index[k])]);
+            for (int j = 0; j < count; ++j) {
+                K[k][j] = m.K[index[k]][index[j]];
+                b[k] += K[k][j] * lambda[index[j]];
+            }
+        }
+        if (count > 0) {
+            solve_block(m, count, count == n ? m.K : K, b, x, count == n);
+            for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
+        }
+        double sum = 0.0;
+        Vec3d L_a, L_b;
+        for (int i = 0; i < n; ++i) {
+            Point& p = points_[m.first + std::uint32_t(i)];
+            const double applied = lambda[i] - p.normal_impulse;
+            p.normal_impulse = lambda[i];
+            p.total_normal += applied;
+            sum += applied;
+            L_a += p.c_a * applied;
+            L_b += p.c_b * applied;
+        }
+        // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
+        A.v += m.n * (sum * A.inv_mass);
+        A.w += A.inv_I * L_a;
+        B.v -= m.n * (sum * B.inv_mass);
+        B.w -= B.inv_I * L_b;
+        // Coulomb friction in impulse form, at the manifold's centre (all its points
+        // together, so that a face slides, sticks and lands alike at every corner): the
+        // tangential velocity there brought to zero while |lambda_t| <= mu lambda_n allows,
+        // lambda_n the manifold's; and its turn about n, within mu lambda_n times the points'
+        // mean distance from the centre. For a particle (one point) that is Eq. 24's
+        // min(mu_s |F_n|, |F_t|) when it was at rest and Eq. 25's mu_d |F_n| when sliding; one
+        // mu between rigid bodies.
+        double normal = 0.0;
+        for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
+        // Rolling resistance (not in the addendum: the rolling resistance coefficient,
+        // F = C_rr |F_n|, as a torque C_rr r |F_n| on a body rolling on radius r): the two
+        // sides' relative turn, rolling or spinning about n, brought to zero by an angular
+        // impulse of at most roll_arm times the normal impulse. A ball left rolling on a
+        // floor stops, as a real one does, instead of rolling (or spinning in place) forever.
+        if (m.roll_arm > 0.0) {
+            Vec3d turn = m.roll - m.roll_mass * (A.w - B.w);
+            const double size = length(turn), roll_limit = m.roll_arm * normal;
+            if (size > roll_limit) turn = size > 0.0 ? turn * (roll_limit / size) : Vec3d{};
+            const Vec3d d = turn - m.roll;
+            m.roll = turn;
+            A.w += A.inv_I * d;
+            B.w -= B.inv_I * d;
+        }
+        if (m.mu <= 0.0) break;
+        const Vec3d dv = A.v - B.v;
+        double t[2];
+        for (int d = 0; d < 2; ++d) {
+            const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
+            t[d] = m.friction[d] - v_t * m.tangent_mass[d];
+        }
+        const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
+        if (size > limit) {
+            const double scale = size > 0.0 ? limit / size : 0.0;
+            t[0] *= scale;
+            t[1] *= scale;
+        }
+        const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
+        m.friction[0] = t[0];
+        m.friction[1] = t[1];
+        m.total_friction[0] += d0;
+        m.total_friction[1] += d1;
+        const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
+        A.v += j * A.inv_mass;
+        A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
+        B.v -= j * B.inv_mass;
+        B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+        if (m.twist_mass > 0.0) {
+            const double twist_limit = limit * m.twist_radius;
+            const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
+            const double d = turn - m.twist;
+            m.twist = turn;
+            A.w += A.inv_I * (m.n * d);
+            B.w -= B.inv_I * (m.n * d);
+        }
+        // Did friction undo the targets? By what it would take to restore them, against the
+        // impulses in play.
+        double undone = 0.0;
         for (int k = 0; k < count; ++k) {
             const Point& p = points_[m.first + std::uint32_t(index[k])];
-            // The solve moves the positions: its normal velocity is the one that closes the gap
-            // (free_offsets); the relax is of velocities alone.
-            const double v_n = normal_velocity(p);
-            if (p.s > kSpeculative) {
-                target[k] = -p.s * inv_h;
-            } else if (bias) {
-                const Softness& soft = p.softness;
-                const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
-                target[k] = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
-            }
+            const double short_of = target[k] - normal_velocity(p);
+            if (short_of > 0.0 || p.normal_impulse > 0.0) undone = std::max(undone, std::abs(short_of) * p.normal_mass);
         }
-        // The normal impulses toward those targets, together; then friction. Friction at a
-        // point away from the centre of mass turns the body, and so changes the normal
-        // velocities again: for a light body (a coin's rim, 5 mm from its centre) by more than
-        // the normal impulses just did. Then the two again, until the targets hold (at most
-        // kCouplingPasses).
-        for (int pass = 0; pass < kCouplingPasses; ++pass) {
-            double K[4][4], b[4], x[4], lambda[4];
-            for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
-            for (int k = 0; k < count; ++k) {
-                b[k] = target[k] - normal_velocity(points_[m.first + std::uint32_t(index[k])]);
-                for (int j = 0; j < count; ++j) {
-                    K[k][j] = m.K[index[k]][index[j]];
-                    b[k] += K[k][j] * lambda[index[j]];
-                }
-            }
-            if (count > 0) {
-                solve_block(m, count, count == n ? m.K : K, b, x, count == n);
-                for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
-            }
-            double sum = 0.0;
-            Vec3d L_a, L_b;
-            for (int i = 0; i < n; ++i) {
-                Point& p = points_[m.first + std::uint32_t(i)];
-                const double applied = lambda[i] - p.normal_impulse;
-                p.normal_impulse = lambda[i];
-                p.total_normal += applied;
-                sum += applied;
-                L_a += p.c_a * applied;
-                L_b += p.c_b * applied;
-            }
-            // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
-            A.v += m.n * (sum * A.inv_mass);
-            A.w += A.inv_I * L_a;
-            B.v -= m.n * (sum * B.inv_mass);
-            B.w -= B.inv_I * L_b;
-            // Coulomb friction in impulse form, at the manifold's centre (all its points
-            // together, so that a face slides, sticks and lands alike at every corner): the
-            // tangential velocity there brought to zero while |lambda_t| <= mu lambda_n allows,
-            // lambda_n the manifold's; and its turn about n, within mu lambda_n times the points'
-            // mean distance from the centre. For a particle (one point) that is Eq. 24's
-            // min(mu_s |F_n|, |F_t|) when it was at rest and Eq. 25's mu_d |F_n| when sliding; one
-            // mu between rigid bodies.
-            if (m.mu <= 0.0) break;
-            double normal = 0.0;
-            for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
-            const Vec3d dv = A.v - B.v;
-            double t[2];
-            for (int d = 0; d < 2; ++d) {
-                const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
-                t[d] = m.friction[d] - v_t * m.tangent_mass[d];
-            }
-            const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
-            if (size > limit) {
-                const double scale = size > 0.0 ? limit / size : 0.0;
-                t[0] *= scale;
-                t[1] *= scale;
-            }
-            const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
-            m.friction[0] = t[0];
-            m.friction[1] = t[1];
-            m.total_friction[0] += d0;
-            m.total_friction[1] += d1;
-            const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
-            A.v += j * A.inv_mass;
-            A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
-            B.v -= j * B.inv_mass;
-            B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
-            if (m.twist_mass > 0.0) {
-                const double twist_limit = limit * m.twist_radius;
-                const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
-                const double d = turn - m.twist;
-                m.twist = turn;
-                A.w += A.inv_I * (m.n * d);
-                B.w -= B.inv_I * (m.n * d);
-            }
-            // Did friction undo the targets? By what it would take to restore them, against the
-            // impulses in play.
-            double undone = 0.0;
-            for (int k = 0; k < count; ++k) {
-                const Point& p = points_[m.first + std::uint32_t(index[k])];
-                const double short_of = target[k] - normal_velocity(p);
-                if (short_of > 0.0 || p.normal_impulse > 0.0) undone = std::max(undone, std::abs(short_of) * p.normal_mass);
-            }
-            if (undone <= 1e-3 * normal + 1e-12) break;
-        }
+        if (undone <= 1e-3 * normal + 1e-12) break;
     }
 }
 
@@ -772,27 +899,7 @@ void ContactSolver::substep(const ContactWorld& world) {
     }
 
     // Warm start: the impulses that held the contacts in the last substep, again.
-    for (Manifold& m : manifolds_) {
-        Body &A = bodies_[m.a], &B = bodies_[m.b];
-        double sum = 0.0;
-        Vec3d L_a, L_b;
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
-            sum += p.normal_impulse;
-            L_a += p.c_a * p.normal_impulse;
-            L_b += p.c_b * p.normal_impulse;
-            p.total_normal += p.normal_impulse;
-        }
-        const Vec3d j = m.n * sum + m.t[0] * m.friction[0] + m.t[1] * m.friction[1];
-        L_a += m.ft_a[0] * m.friction[0] + m.ft_a[1] * m.friction[1] + m.n * m.twist;
-        L_b += m.ft_b[0] * m.friction[0] + m.ft_b[1] * m.friction[1] + m.n * m.twist;
-        A.v += j * A.inv_mass;
-        A.w += A.inv_I * L_a;
-        B.v -= j * B.inv_mass;
-        B.w -= B.inv_I * L_b;
-        m.total_friction[0] += m.friction[0];
-        m.total_friction[1] += m.friction[1];
-    }
+    each_coloured([&](Manifold& m) { warm_start(m); });
 
     solve(true);
     if (bouncing) restitute(false);
@@ -802,8 +909,8 @@ void ContactSolver::substep(const ContactWorld& world) {
     // under symplectic Euler and Verlet the free turn again from where the substep began, with
     // the angular momentum the contacts left (free_turn keeps its energy); under the others,
     // turned on by h times the change.
-    for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        Body& s = bodies_[b];
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        Body& s = bodies_[i + 1];
         const Vec3d dx = (s.v - s.v_free) * h;
         if (s.kind == Body::Kind::Rigid) {
             double* y = &world.state[s.index * rigid::kStateSize];
@@ -833,7 +940,7 @@ void ContactSolver::substep(const ContactWorld& world) {
             s.x = Vec3d{p.x[s.index], p.y[s.index], p.z[s.index]};
             s.dp = s.x - s.x0;
         }
-    }
+    });
     refresh(world);
     separations();
     for (Point& p : points_) p.s_moved = p.s;
@@ -876,6 +983,7 @@ void ContactSolver::forget_bounced() {
         if (!m.bounced && !m.bouncing) continue;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].normal_impulse = 0.0;
         m.friction[0] = m.friction[1] = m.twist = 0.0;
+        m.roll = Vec3d{};
     }
 }
 
@@ -983,8 +1091,8 @@ void ContactSolver::restitute(bool after_positions) {
 // The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's
 // L += r x j, as J_world dw), a particle's v, and Verlet's step with it.
 void ContactSolver::store(const ContactWorld& world) {
-    for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        const Body& s = bodies_[b];
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        const Body& s = bodies_[i + 1];
         if (s.kind == Body::Kind::Rigid) {
             double* y = &world.state[s.index * rigid::kStateSize];
             const Vec3d dP = (s.v - s.v_free) / s.inv_mass, dL = s.I * (s.w - s.w_free);
@@ -1004,7 +1112,7 @@ void ContactSolver::store(const ContactWorld& world) {
                 p.verlet_z[s.index] = p.vz[s.index] * h;
             }
         }
-    }
+    });
 }
 
 void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWorld& world) {
@@ -1068,6 +1176,7 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             c.warm_tangent[0] = m.friction[0] * share_last / h_;
             c.warm_tangent[1] = m.friction[1] * share_last / h_;
             c.warm_twist = m.twist * share_last / h_;
+            c.warm_roll = m.roll * (share_last / h_);
             c.depth = -p.s;
         }
     }

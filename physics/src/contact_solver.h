@@ -61,6 +61,7 @@
 #include "physics/mat3.h"
 #include "physics/quat.h"
 #include "physics/rigid_body.h"
+#include "physics/thread_pool.h"
 #include "physics/world.h"
 
 namespace softbody {
@@ -99,6 +100,7 @@ struct ContactWorld {
     std::span<const double> step_start;   // as the substep began (for each point's approach)
     std::span<SolverParticles> particles;
     std::span<const Vec3Array* const> particle_step_start_v;  // each soft body's v as the substep began
+    ThreadPool* pool = nullptr;           // the world's threads (none: this one)
 };
 
 // A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,
@@ -179,6 +181,11 @@ struct SolverManifold {
     double tangent_mass[2] = {0.0, 0.0};
     double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};
     double twist_mass = 0.0, twist_radius = 0.0, twist = 0.0;
+    // Rolling resistance: C_rr r (the largest torque per unit normal force), what stops the
+    // two sides' relative turn (the inverse of J_a^-1 + J_b^-1), and its angular impulse.
+    double roll_arm = 0.0;
+    Mat3 roll_mass;
+    Vec3d roll;
     // The points' coupling K (K_ij: point i's change of normal velocity per unit impulse at
     // point j), and what solves it for all points pushing: its inverse, or for four corners on
     // a plane (K singular: three would hold the face) the inverse with the null direction z
@@ -217,6 +224,16 @@ private:
     void restitute(bool after_positions);
     void forget_bounced();
     double work(const Body& body, bool shown) const;
+    void colour();
+    void solve_manifold(Manifold& m, bool bias);
+    void warm_start(Manifold& m);
+    // f(i) for every i below count, on the pool's threads when there are enough: only for items
+    // that write nothing another item reads (each body's own state, each manifold's own points).
+    template <class F>
+    void parallel(std::size_t count, std::size_t grain, const F& f);
+    // f(manifold) for every manifold, colour after colour, a colour's manifolds on every thread.
+    template <class F>
+    void each_coloured(const F& f);
 
     ContactSettings settings_;
     double h_ = 0.0;
@@ -227,6 +244,12 @@ private:
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
     ContactEnergy energy_;
+    // The manifolds by colour (colour()): colour c is colour_order_[colour_start_[c]] up to
+    // colour_start_[c + 1], no two of them sharing a moving body; the last, the ones no colour
+    // had room for, is solved in order on one thread.
+    std::vector<std::uint32_t> colour_order_;
+    std::vector<std::uint32_t> colour_start_;
+    ThreadPool* pool_ = nullptr;
 };
 
 // Eq. 38's denominator for a unit direction n at offsets r_a, r_b from the centres of mass:

@@ -213,6 +213,11 @@ std::size_t bin(std::size_t n, double pitch, const char* prefix, Scene& scene) {
     return side;
 }
 
+// The rolling resistance of a pile's balls and cylinders (wood on wood, about): a ball left
+// rolling or spinning on the floor of the bin stops within a second or two, as a real one does,
+// and the pile comes to rest (and sleeps) instead of keeping a few balls turning for ever.
+constexpr float kPileRolling = 0.01f;
+
 // Body i of n in layers of side x side at `pitch` over the bin, 0.7 m up, 0.35 m a layer.
 Vec3d layer_position(std::size_t i, std::size_t side, double pitch) {
     const std::size_t layer = i / (side * side), row = (i / side) % side, column = i % side;
@@ -241,11 +246,13 @@ void pile(std::size_t n, Scene& scene) {
             case 1:
                 def.shape = ShapeKind::Sphere;
                 def.radius = 0.06 + 0.05 * unit(rng);
+                def.rolling_resistance = kPileRolling;
                 break;
             case 2:
                 def.shape = ShapeKind::Cylinder;
                 def.radius = 0.05 + 0.04 * unit(rng);
                 def.height = 0.12 + 0.1 * unit(rng);
+                def.rolling_resistance = kPileRolling;
                 break;
             default:
                 // A mesh body: an icosahedron 0.25 m across.
@@ -278,6 +285,7 @@ void boxes(std::size_t n, Scene& scene) {
         } else {
             def.shape = ShapeKind::Sphere;
             def.radius = 0.06 + 0.05 * unit(rng);
+            def.rolling_resistance = kPileRolling;
         }
         scene.rigid_bodies.push_back(def);
     }

@@ -98,6 +98,7 @@ void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const dou
     c.normal = n;
     c.restitution = body.restitution.value_or(world.restitution);
     c.friction = body.friction.value_or(world.dynamic_friction);
+    c.rolling = double(body.rolling_resistance) * body.rolling_radius;
     // `local`: the point in body axes.
     const auto add = [&](const Vec3d& local, std::uint32_t feature, std::vector<RigidContact>& into) {
         const Vec3d p0 = m0.x + m0.R * local;

@@ -137,22 +137,25 @@ void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double 
 }
 
 void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h,
-                          std::span<const std::uint8_t> asleep) {
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-        const RigidBody& body = bodies[b];
-        if (body.fixed || (!asleep.empty() && asleep[b])) continue;
-        const std::size_t at = b * rigid::kStateSize;
-        const Vec3d P{y[at + rigid::P], y[at + rigid::P + 1], y[at + rigid::P + 2]};
-        const Vec3d L{y[at + rigid::L], y[at + rigid::L + 1], y[at + rigid::L + 2]};
-        for (int k = 0; k < 3; ++k) y[at + std::size_t(rigid::X + k)] = start[at + std::size_t(rigid::X + k)] + h * P[k] * body.inv_mass;
-        const Quat q1 = free_turn(body, Quat{start[at + rigid::Q], start[at + rigid::Q + 1], start[at + rigid::Q + 2],
-                                             start[at + rigid::Q + 3]},
-                                  L, h);
-        y[at + rigid::Q] = q1.w;
-        y[at + rigid::Q + 1] = q1.x;
-        y[at + rigid::Q + 2] = q1.y;
-        y[at + rigid::Q + 3] = q1.z;
-    }
+                          std::span<const std::uint8_t> asleep, ThreadPool* pool) {
+    // Each body on its own: on every thread, in chunks of bodies (the same bits at any count).
+    for_chunks(pool, bodies.size(), 64, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            const RigidBody& body = bodies[b];
+            if (body.fixed || (!asleep.empty() && asleep[b])) continue;
+            const std::size_t at = b * rigid::kStateSize;
+            const Vec3d P{y[at + rigid::P], y[at + rigid::P + 1], y[at + rigid::P + 2]};
+            const Vec3d L{y[at + rigid::L], y[at + rigid::L + 1], y[at + rigid::L + 2]};
+            for (int k = 0; k < 3; ++k) y[at + std::size_t(rigid::X + k)] = start[at + std::size_t(rigid::X + k)] + h * P[k] * body.inv_mass;
+            const Quat q1 = free_turn(body, Quat{start[at + rigid::Q], start[at + rigid::Q + 1], start[at + rigid::Q + 2],
+                                                 start[at + rigid::Q + 3]},
+                                      L, h);
+            y[at + rigid::Q] = q1.w;
+            y[at + rigid::Q + 1] = q1.x;
+            y[at + rigid::Q + 2] = q1.y;
+            y[at + rigid::Q + 3] = q1.z;
+        }
+    });
 }
 
 Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, double energy_target) {

@@ -31,6 +31,7 @@
 
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
+#include "physics/thread_pool.h"
 
 namespace softbody {
 
@@ -63,7 +64,7 @@ void flat_euler(std::span<double> y, std::span<const double> dy, double h);
 // (empty: none) are left where they are (sleep.h).
 void flat_euler_momenta(std::span<double> y, std::span<const double> dy, double h);
 void symplectic_positions(std::span<const RigidBody> bodies, std::span<const double> start, std::span<double> y, double h,
-                          std::span<const std::uint8_t> asleep = {});
+                          std::span<const std::uint8_t> asleep = {}, ThreadPool* pool = nullptr);
 // q turned through h as a free body with angular momentum L turns (the splitting above), its
 // energy 1/2 L . J_world^-1 L kept at what it was at q, or at `energy_target` when one is given.
 Quat free_turn(const RigidBody& body, const Quat& q, const Vec3d& L, double h, double energy_target = -1.0);

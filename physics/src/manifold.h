@@ -22,13 +22,20 @@ namespace softbody {
 // slightest tilt would otherwise start the four from a different corner. Zero (the default)
 // keeps only exact ties.
 //
-// After the first, a point overlapping by more than kManifoldOverlap goes before any that does
-// not, whatever the area: a cylinder lying on its side has its two bottom corners deepest, and
-// the corners of the sides next to them, a few millimetres up, span more area with the first;
-// kept instead of the second bottom corner, they let that end sink unheld (a cylinder in a pile
-// rocked end to end 10 mm into the ground). Points within kManifoldOverlap of touching (a face
-// resting, its corners at rounding's depths) are chosen by area alone.
-inline constexpr double kManifoldOverlap = 5e-4;  // m
+// After the first, points go in tiers, whatever the area: those overlapping by more than
+// kManifoldDeep before the rest that touch (within kManifoldTouching of it, or overlapping less),
+// and those before the ones still apart (speculative points a few millimetres off). A cylinder
+// lying on its side has its two bottom corners deepest, and the corners of the sides next to
+// them, a few millimetres up, span more area with the first; kept instead of the second bottom
+// corner, they let that end sink unheld (a cylinder in a pile rocked end to end 10 mm into the
+// ground); kept instead of a facet's touching corners while it rested, the facet tipped onto
+// them, was pushed back out and tipped again every sixth tick, for ever (a cylinder alone on
+// the floor never slept). The deep tier starts well past the 0.5 mm a loaded face rests at
+// (ContactSettings::stack_depth) and the 2 mm a body at rest may stand (sleep.h): at 0.5 mm a box
+// resting on another had its corners on either side of the line, kept two of them 8 mm apart and
+// not the far corner, and tipped every twelfth tick. Within a tier, area alone.
+inline constexpr double kManifoldDeep = 3e-3;      // m
+inline constexpr double kManifoldTouching = 5e-4;  // m
 
 template <class Contact>
 void reduce_manifold(std::vector<Contact>& points, const Vec3d& n, double depth_tie = 0.0) {
@@ -38,10 +45,13 @@ void reduce_manifold(std::vector<Contact>& points, const Vec3d& n, double depth_
     // The earliest point whose score is within `tie` of the best.
     const auto take = [&](auto score, double tie) {
         const bool first = kept.empty();
-        const auto overlapping = [&](const Contact& c) { return !first && c.depth > kManifoldOverlap; };
-        bool any_overlapping = false;
-        for (const Contact& c : points) any_overlapping = any_overlapping || overlapping(c);
-        const auto candidate = [&](const Contact& c) { return !any_overlapping || overlapping(c); };
+        const auto tier = [&](const Contact& c) {
+            if (first) return 0;
+            return c.depth > kManifoldDeep ? 2 : c.depth >= -kManifoldTouching ? 1 : 0;
+        };
+        int top = 0;
+        for (const Contact& c : points) top = std::max(top, tier(c));
+        const auto candidate = [&](const Contact& c) { return tier(c) == top; };
         double best_score = -1e300;
         for (const Contact& c : points) {
             if (candidate(c)) best_score = std::max(best_score, score(c));

@@ -37,6 +37,7 @@ constexpr RigidKeyInfo kKeys[] = {
     {"fixed", RigidKeyType::Bool, "", "", "Infinite mass: scenery that never moves", 0, 0},
     {"restitution", RigidKeyType::Number, "", "Eq. 38", "Coefficient of restitution e at its contacts (default: the world's)", 0, 1},
     {"friction", RigidKeyType::Number, "", "", "Coulomb friction mu at its contacts (default: the world's dynamic_friction)", 0, 2},
+    {"rolling_resistance", RigidKeyType::Number, "", "", "Rolling resistance C_rr: a sphere or cylinder turning on a contact is held back by a torque C_rr |F_n| r (default 0: none)", 0, 1},
     {"drag_coefficient", RigidKeyType::Number, "", "Eq. 23", "Drag coefficient C_D at its centre of mass (default 0: none)", 0, 10},
     {"color", RigidKeyType::Vec3, "", "", "The body's colour r, g, b from 0 to 1 (default: the palette's)", 0, 1},
 };
@@ -249,6 +250,7 @@ void set_rigid_key(RigidBodyDef& def, std::string_view key, std::string_view tex
             else if (key == "restitution") def.restitution = static_cast<float>(value);
             else if (key == "friction") def.friction = static_cast<float>(value);
             else if (key == "drag_coefficient") def.drag_coefficient = static_cast<float>(value);
+            else if (key == "rolling_resistance") def.rolling_resistance = static_cast<float>(value);
             break;
         }
         case RigidKeyType::Vec3: {
@@ -314,6 +316,7 @@ std::string rigid_key_text(const RigidBodyDef& def, std::string_view key) {
     if (key == "restitution") return def.restitution ? number_text(*def.restitution) : "";
     if (key == "friction") return def.friction ? number_text(*def.friction) : "";
     if (key == "drag_coefficient") return number_text(def.drag_coefficient);
+    if (key == "rolling_resistance") return number_text(def.rolling_resistance);
     if (key == "color") return def.color ? vec(*def.color) : "";
     return "";
 }
@@ -352,6 +355,10 @@ RigidBody make_rigid_body(const RigidBodyDef& def) {
     body.friction = def.friction;
     body.color = def.color;
     body.drag_coefficient = def.drag_coefficient;
+    body.rolling_resistance = def.rolling_resistance;
+    // A ball rolls on its radius, a cylinder on its side; a box or a hull does not roll (it
+    // tips over its edges, which its contact points already hold).
+    body.rolling_radius = def.shape == ShapeKind::Sphere || def.shape == ShapeKind::Cylinder ? body.radius : 0.0;
     body.drag_area = 3.14159265358979323846 * g.bounding_radius * g.bounding_radius;
 
     // The initial state, Listing 10's thirteen numbers. L = J_world omega (Eq. 28, 32).

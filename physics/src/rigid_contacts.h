@@ -12,6 +12,7 @@
 #include "physics/contact.h"
 #include "physics/params.h"
 #include "physics/rigid_body.h"
+#include "physics/thread_pool.h"
 
 namespace softbody {
 
@@ -21,15 +22,19 @@ namespace softbody {
 // friction the geometric mean sqrt(mu_a mu_b); each defaults to the world's. `start`: the flat
 // state when the tick began, `h` the tick; `scratch` keeps its allocations from step to step.
 // Bodies marked in `asleep` (empty: none) are in the broad phase, but a pair of two that are
-// each asleep or fixed is not tested (sleep.h).
+// each asleep or fixed is not tested (sleep.h). The pairs are tested on `pool`'s threads, in
+// chunks joined in the pairs' order: the same list at any thread count.
 struct RigidContactScratch {
     std::vector<Aabb> boxes;
     std::vector<double> margins;
     std::vector<BodyPair> pairs;
-    std::vector<ContactPoint> points;
+    std::vector<std::vector<ContactPoint>> points;  // per chunk of work (for_chunks)
+    std::vector<std::vector<RigidContact>> found;   // per chunk, joined in order
+    std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)
 };
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                          std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
-                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {});
+                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {},
+                         ThreadPool* pool = nullptr);
 
 }  // namespace softbody

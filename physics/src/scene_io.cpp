@@ -219,6 +219,7 @@ json rigid_value_json(const RigidBodyDef& def, std::string_view key) {
     if (key == "restitution") return def.restitution ? json(*def.restitution) : json();
     if (key == "friction") return def.friction ? json(*def.friction) : json();
     if (key == "drag_coefficient") return def.drag_coefficient;
+    if (key == "rolling_resistance") return def.rolling_resistance;
     if (key == "color") return def.color ? vec(*def.color) : json();
     return json();  // "rotation": kept as the orientation
 }

@@ -451,7 +451,7 @@ void World::step(float h) {
             // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
             if (!rigid_.empty()) {
                 flat_euler_momenta(y_, k_[0], hd);
-                symplectic_positions(rigid_, y_step_start_, y_, hd, asleep_);
+                symplectic_positions(rigid_, y_step_start_, y_, hd, asleep_, pool_.get());
             }
             break;
         case Integrator::ExplicitEuler:
@@ -524,7 +524,7 @@ ContactWorld World::contact_world() {
         }
         solver_particle_v_[b] = &body.v_step_start;
     }
-    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_};
+    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_, pool_.get()};
 }
 
 // Every contact within reach of `reach` seconds (the tick, or the rest of it), found where the
@@ -542,11 +542,18 @@ void World::find_contacts(double reach) {
 void World::generate_contacts(double reach) {
     contacts_.clear();
     y_contacts_start_ = y_;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        if (asleep_[b]) continue;
-        rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, reach, contacts_);
-    }
-    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_, asleep_);
+    // Each body's with the ground, on every thread in chunks joined in the bodies' order.
+    std::vector<std::vector<RigidContact>>& ground = rigid_contact_scratch_->ground;
+    ground.resize(std::size_t(4 * pool_->threads()));
+    const std::size_t chunks = for_chunks(pool_.get(), rigid_.size(), 128, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        ground[chunk].clear();
+        for (std::size_t b = begin; b < end; ++b) {
+            if (asleep_[b]) continue;
+            rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, reach, ground[chunk]);
+        }
+    });
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) contacts_.insert(contacts_.end(), ground[chunk].begin(), ground[chunk].end());
+    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_, asleep_, pool_.get());
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, reach, contacts_);
     }

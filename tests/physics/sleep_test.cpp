@@ -76,20 +76,10 @@ TEST(Sleep, PyramidSceneFileIsTheGeneratedPyramid) {
     }
 }
 
-// boxes:100 with each ball made a box of its size: a pile of 100 boxes. (The balls of boxes:100
-// roll and spin on: nothing in the contact model resists a ball's rolling, or its spin about the
-// normal of its one contact point, and a ball that rolls keeps its island awake; README,
-// "Islands and sleeping".)
-Scene box_pile() {
-    Scene scene = generated_scene("boxes:100");
-    for (RigidBodyDef& def : scene.rigid_bodies) {
-        if (def.shape != ShapeKind::Sphere) continue;
-        def.shape = ShapeKind::Box;
-        def.size = Vec3d{2.0 * *def.radius, 2.0 * *def.radius, 2.0 * *def.radius};
-        def.radius.reset();
-    }
-    return scene;
-}
+// boxes:100: fifty boxes and fifty balls dropped into a bin, the balls with rolling resistance
+// 0.01 (without it a ball keeps rolling, or spinning in place about the normal of its one
+// contact point, and keeps its island awake: README, "Islands and sleeping").
+Scene box_pile() { return generated_scene("boxes:100"); }
 
 // A ball dropped into a settled pile from above its middle, at 4 m/s: the pile's state with one
 // body more (the app's Add menu does the same: World::restore with more_bodies).
@@ -114,6 +104,7 @@ struct Pile {
         ball.shape = ShapeKind::Sphere;
         ball.radius = 0.15;
         ball.density = 1000.0;
+        ball.rolling_resistance = 0.01f;
         ball.position = Vec3d{centre.x, centre.y, top + 0.6};
         ball.velocity = Vec3d{0.0, 0.0, -4.0};
         Scene more = scene;
@@ -133,7 +124,7 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
     World* world = pile.world.get();
     ASSERT_EQ(world->status(), Status::Ok) << world->divergence();
     const std::size_t bodies = dynamic_bodies(*world);
-    std::printf("a pile of %zu boxes after 10 s: %zu asleep\n", bodies, world->sleeping_count());
+    std::printf("a pile of %zu boxes and balls after 10 s: %zu asleep\n", bodies, world->sleeping_count());
     EXPECT_GE(world->sleeping_count() * 10, bodies * 9) << world->sleeping_count() << " of " << bodies << " asleep";
     // A sleeping body is still: its P and L are 0.
     for (std::size_t b = 0; b < world->rigid_body_count(); ++b) {
@@ -178,6 +169,18 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
     EXPECT_GE(woke_asleep * 10, woke.size() * 9) << woke_asleep << " of the " << woke.size() << " woken asleep again";
 }
 
+// pile:100, boxes, balls, cylinders and icosahedra: settled, it sleeps too. (Its cylinders are
+// 32-sided prisms: before manifolds kept a resting facet's touching corners over the next
+// facets' corners a few millimetres up, a cylinder tipped onto those and was pushed back every
+// sixth tick, for ever, and 47 of the 100 slept; manifold.h.)
+TEST(Sleep, MixedPileOfBoxesBallsCylindersAndHullsSleeps) {
+    World world(make_world_def(generated_scene("pile:100")), WorldOptions{1});
+    world.run(10 * kTicksPerSecond);
+    ASSERT_EQ(world.status(), Status::Ok) << world.divergence();
+    std::printf("pile:100 after 10 s: %zu of %zu asleep\n", world.sleeping_count(), dynamic_bodies(world));
+    EXPECT_GE(world.sleeping_count() * 10, dynamic_bodies(world) * 9);
+}
+
 // The same bits at 1, 2 and 3 threads, through falling asleep, a throw that wakes, and sleeping
 // again; and the same islands asleep.
 TEST(Sleep, SameHashAndSleepersAtOneTwoAndThreeThreads) {
@@ -204,7 +207,7 @@ TEST(Sleep, SameHashAndSleepersAtOneTwoAndThreeThreads) {
 TEST(Sleep, RestoredSnapshotReplaysTheSameSleep) {
     Pile pile;
     World& world = *pile.world;
-    world.run(5 * kTicksPerSecond);
+    world.run(2 * kTicksPerSecond);
     const WorldSnapshot then = world.snapshot();
     ASSERT_GT(world.sleeping_count(), 0u);
     ASSERT_LT(world.sleeping_count(), dynamic_bodies(world));  // some still settling: more sleep later

@@ -21,6 +21,8 @@ struct RigidContact {
     double depth = 0.0;          // penetration where the tick left the bodies, m (> 0: overlapping)
     double restitution = 0.0;    // e
     double friction = 0.0;       // mu; for a particle, mu_d of Eq. 25 while it slides
+    double rolling = 0.0;        // C_rr r: the torque holding back a turn of a round body on
+                                 // this contact, per newton of normal force, m (0: none)
     double static_friction = 0.0;  // a particle's stick limit: mu_s (Eq. 24) when it was at rest
                                    // as the tick began, mu_d when it was already sliding
 
@@ -33,6 +35,7 @@ struct RigidContact {
     double warm_normal = 0.0;
     double warm_tangent[2] = {0.0, 0.0};
     double warm_twist = 0.0;   // friction's turn about the normal (its manifold's share)
+    Vec3d warm_roll;           // rolling resistance's torque (its manifold's share), N m
 };
 
 // A particle of one soft body against the surface of another (or of its own, with

@@ -62,6 +62,8 @@ struct RigidBodyDef {
     std::optional<float> restitution;  // e at contacts (default: the world's `restitution`)
     std::optional<float> friction;     // mu at contacts (default: the world's `dynamic_friction`)
     float drag_coefficient = 0.0f;     // C_D of Eq. 23 (default 0: no drag)
+    float rolling_resistance = 0.0f;   // C_rr: a round body's turn on a contact is held back by
+                                       // C_rr |F_n| r (default 0: none)
     std::optional<Vec3d> color;        // r, g, b from 0 to 1 (default: the palette's)
 
     bool operator==(const RigidBodyDef&) const = default;
@@ -110,6 +112,8 @@ struct RigidBody {
     std::optional<float> restitution, friction;  // empty: the world's
     std::optional<Vec3d> color;                  // empty: the palette's (for drawing only)
     float drag_coefficient = 0.0f;
+    float rolling_resistance = 0.0f;
+    double rolling_radius = 0.0;  // the radius it rolls on: a sphere's or a cylinder's (0: it tips, it does not roll)
     double drag_area = 0.0;     // S of Eq. 23: the bounding sphere's cross-section, m^2
 
     std::array<double, rigid::kStateSize> initial{};  // the state it starts from (reset)

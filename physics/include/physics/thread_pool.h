@@ -8,6 +8,7 @@
 // task the same way. A pool that nobody calls for kSpin goes back to costing nothing.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -55,5 +56,21 @@ private:
 
 // Hardware threads, at least 1.
 int hardware_threads();
+
+// Splits [0, count) into consecutive chunks of at least `grain` items (one when there are too
+// few to share, or no pool), a few a thread, and calls f(chunk, begin, end) for each on the
+// pool's threads. Returns the number of chunks. Results kept per chunk and joined in chunk order
+// are the same whatever the thread count.
+template <class F>
+std::size_t for_chunks(ThreadPool* pool, std::size_t count, std::size_t grain, const F& f) {
+    const std::size_t threads = pool ? std::size_t(pool->threads()) : 1;
+    const std::size_t chunks = threads == 1 || count < 2 * grain ? 1 : std::min((count + grain - 1) / grain, 4 * threads);
+    if (chunks == 1) {
+        f(std::size_t{0}, std::size_t{0}, count);
+        return 1;
+    }
+    pool->run(chunks, [&](std::size_t c) { f(c, count * c / chunks, count * (c + 1) / chunks); });
+    return chunks;
+}
 
 }  // namespace softbody
