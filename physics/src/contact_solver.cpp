@@ -705,6 +705,9 @@ double ContactSolver::work(const Body& s, bool shown) const {
     return W;
 }
 
+// The impulses' share of each side, Eq. 37 (solve_manifold too). The static world (body 0) is
+// every colour's, so it is never written to (1/m = 0 and J^-1 = 0: it would not move anyway):
+// no two threads touch the same body.
 void ContactSolver::warm_start(Manifold& m) {
     Body &A = bodies_[m.a], &B = bodies_[m.b];
     double sum = 0.0;
@@ -719,10 +722,14 @@ void ContactSolver::warm_start(Manifold& m) {
     const Vec3d j = m.n * sum + m.t[0] * m.friction[0] + m.t[1] * m.friction[1];
     L_a += m.ft_a[0] * m.friction[0] + m.ft_a[1] * m.friction[1] + m.n * m.twist + m.roll;
     L_b += m.ft_b[0] * m.friction[0] + m.ft_b[1] * m.friction[1] + m.n * m.twist + m.roll;
-    A.v += j * A.inv_mass;
-    A.w += A.inv_I * L_a;
-    B.v -= j * B.inv_mass;
-    B.w -= B.inv_I * L_b;
+    if (m.a != 0) {
+        A.v += j * A.inv_mass;
+        A.w += A.inv_I * L_a;
+    }
+    if (m.b != 0) {
+        B.v -= j * B.inv_mass;
+        B.w -= B.inv_I * L_b;
+    }
     m.total_friction[0] += m.friction[0];
     m.total_friction[1] += m.friction[1];
 }
@@ -799,10 +806,14 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             L_b += p.c_b * applied;
         }
         // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
-        A.v += m.n * (sum * A.inv_mass);
-        A.w += A.inv_I * L_a;
-        B.v -= m.n * (sum * B.inv_mass);
-        B.w -= B.inv_I * L_b;
+        if (m.a != 0) {
+            A.v += m.n * (sum * A.inv_mass);
+            A.w += A.inv_I * L_a;
+        }
+        if (m.b != 0) {
+            B.v -= m.n * (sum * B.inv_mass);
+            B.w -= B.inv_I * L_b;
+        }
         // Coulomb friction in impulse form, at the manifold's centre (all its points
         // together, so that a face slides, sticks and lands alike at every corner): the
         // tangential velocity there brought to zero while |lambda_t| <= mu lambda_n allows,
@@ -823,8 +834,12 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             if (size > roll_limit) turn = size > 0.0 ? turn * (roll_limit / size) : Vec3d{};
             const Vec3d d = turn - m.roll;
             m.roll = turn;
-            A.w += A.inv_I * d;
-            B.w -= B.inv_I * d;
+            if (m.a != 0) {
+                A.w += A.inv_I * d;
+            }
+            if (m.b != 0) {
+                B.w -= B.inv_I * d;
+            }
         }
         if (m.mu <= 0.0) break;
         const Vec3d dv = A.v - B.v;
@@ -845,17 +860,25 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         m.total_friction[0] += d0;
         m.total_friction[1] += d1;
         const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
-        A.v += j * A.inv_mass;
-        A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
-        B.v -= j * B.inv_mass;
-        B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+        if (m.a != 0) {
+            A.v += j * A.inv_mass;
+            A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
+        }
+        if (m.b != 0) {
+            B.v -= j * B.inv_mass;
+            B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+        }
         if (m.twist_mass > 0.0) {
             const double twist_limit = limit * m.twist_radius;
             const double turn = std::clamp(m.twist - dot(A.w - B.w, m.n) * m.twist_mass, -twist_limit, twist_limit);
             const double d = turn - m.twist;
             m.twist = turn;
-            A.w += A.inv_I * (m.n * d);
-            B.w -= B.inv_I * (m.n * d);
+            if (m.a != 0) {
+                A.w += A.inv_I * (m.n * d);
+            }
+            if (m.b != 0) {
+                B.w -= B.inv_I * (m.n * d);
+            }
         }
         // Did friction undo the targets? By what it would take to restore them, against the
         // impulses in play.
