@@ -57,7 +57,7 @@ int sweep_axis(std::span<const Aabb> boxes) {
 
 }  // namespace
 
-void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet) {
     out.clear();
     const int axis = sweep_axis(boxes);
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -80,8 +80,10 @@ void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) 
     // end, so nothing depends on how the sort breaks ties.
     for (std::size_t i = 0; i < sweep.size(); ++i) {
         const Entry& a = sweep[i];
+        const bool a_quiet = !quiet.empty() && quiet[a.index];
         for (std::size_t j = i + 1; j < sweep.size() && sweep[j].lo <= a.hi; ++j) {
             const Entry& b = sweep[j];
+            if (a_quiet && quiet[b.index]) continue;
             if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v) {
                 out.push_back({std::min(a.index, b.index), std::max(a.index, b.index)});
             }

@@ -58,15 +58,15 @@ std::string soft_body_fault(const SoftBody& body, const std::string& who) {
 // What is wrong with a rigid body's state, or "": a number that is not finite, an absurd speed
 // or spin, or a body flung absurdly far.
 std::string rigid_body_fault(const RigidBody& body, const double* state) {
-    const std::string who = "rigid body '" + body.name + "'";
+    const auto who = [&] { return "rigid body '" + body.name + "'"; };
     for (int k = 0; k < rigid::kStateSize; ++k) {
-        if (!std::isfinite(state[k])) return who + "'s state is no longer a finite number";
+        if (!std::isfinite(state[k])) return who() + "'s state is no longer a finite number";
     }
     const RigidMotion m = rigid_motion(body, state);
-    if (!is_finite(m.omega) || !is_finite(m.v)) return who + "'s state is no longer a finite number";
-    if (length(m.v) > kMaxSpeed) return who + " moves at " + fixed(length(m.v), 0) + " m/s";
-    if (length(m.omega) > kMaxAngularSpeed) return who + " spins at " + fixed(length(m.omega), 0) + " rad/s";
-    if (length(m.x) > kMaxDistance) return who + " is " + fixed(length(m.x), 0) + " m from the origin";
+    if (!is_finite(m.omega) || !is_finite(m.v)) return who() + "'s state is no longer a finite number";
+    if (length(m.v) > kMaxSpeed) return who() + " moves at " + fixed(length(m.v), 0) + " m/s";
+    if (length(m.omega) > kMaxAngularSpeed) return who() + " spins at " + fixed(length(m.omega), 0) + " rad/s";
+    if (length(m.x) > kMaxDistance) return who() + " is " + fixed(length(m.x), 0) + " m from the origin";
     return "";
 }
 
@@ -78,8 +78,9 @@ void World::check_divergence() {
         const std::string who = soft_.size() > 1 ? "body '" + soft_[b].name + "' particle " : "particle ";
         what = soft_body_fault(soft_[b], who);
     }
+    // A body asleep or fixed has not moved since it was last checked (nor can it have).
     for (std::size_t b = 0; b < rigid_.size() && what.empty(); ++b) {
-        what = rigid_body_fault(rigid_[b], rigid_state(b));
+        if (!rigid_[b].fixed && !asleep_[b]) what = rigid_body_fault(rigid_[b], rigid_state(b));
     }
     // Past its stability limit a body need not fly apart: the fastest mode (the uniform
     // expansion) can grow until the springs turn the body inside out and cap it, leaving it

@@ -23,12 +23,16 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
     for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
             const double* s = &start[b * rigid::kStateSize];
-            scratch.margins[b] = bodies[b].fixed ? 0.0 : speculative_margin(bodies[b], rigid_motion(bodies[b], s), h, g);
+            // Asleep, P and L are exactly 0: the margin of a body at rest, without its motion.
+            const bool still = !asleep.empty() && asleep[b];
+            scratch.margins[b] = bodies[b].fixed ? 0.0 : speculative_margin(bodies[b], still ? RigidMotion{} : rigid_motion(bodies[b], s), h, g);
             scratch.boxes[b] = world_aabb(shapes[b], pose_of(s), scratch.margins[b]);
         }
     });
-    scratch.pairs.clear();
-    overlapping_pairs(scratch.boxes, scratch.pairs);
+    // Two bodies each asleep or fixed are not paired at all (they are not tested: sleep.h).
+    scratch.quiet.resize(n);
+    for (std::size_t b = 0; b < n; ++b) scratch.quiet[b] = bodies[b].fixed || (!asleep.empty() && asleep[b]) ? 1 : 0;
+    overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet);
     const std::size_t most = pool ? 4 * std::size_t(pool->threads()) : 1;
     if (scratch.found.size() < most) {
         scratch.found.resize(most);

@@ -28,6 +28,7 @@ struct RigidContactScratch {
     std::vector<Aabb> boxes;
     std::vector<double> margins;
     std::vector<BodyPair> pairs;
+    std::vector<std::uint8_t> quiet;               // asleep or fixed: not paired with one another
     std::vector<std::vector<ContactPoint>> points;  // per chunk of work (for_chunks)
     std::vector<std::vector<RigidContact>> found;   // per chunk, joined in order
     std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)

@@ -40,6 +40,7 @@ struct BodyPair {
 // coordinate that is not a number overlaps nothing.
 // Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes overlapping one on the
 // sweep axis.
-void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out);
+// `quiet` (empty: none): boxes so marked (bodies asleep or fixed) are not paired with one another.
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {});
 
 }  // namespace softbody
