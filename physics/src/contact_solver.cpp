@@ -316,12 +316,6 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
             s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
-            // Eq. 32 with q made unit first (between renormalisations |q| drifts under explicit
-            // Euler and RK4), so that I and inv_I are each other's inverse: the impulses' L
-            // (I dw) is then exactly r x j.
-            const Mat3 R = rotation_of(s.q0);
-            s.inv_I = R * body.J_body_inv * R.transposed();
-            s.I = R * body.J_body * R.transposed();
             at = std::int32_t(bodies_.size());
             bodies_.push_back(s);
         }
@@ -426,6 +420,17 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         i = end;
     }
     pool_ = world.pool;
+    // Each rigid body's inertia in world axes, Eq. 32 with q made unit first (between
+    // renormalisations |q| drifts under explicit Euler and RK4), so that I and inv_I are each
+    // other's inverse: the impulses' L (I dw) is then exactly r x j.
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        Body& s = bodies_[i + 1];
+        if (s.kind != Body::Kind::Rigid) return;
+        const RigidBody& body = world.bodies[s.index];
+        const Mat3 R = rotation_of(s.q0);
+        s.inv_I = R * body.J_body_inv * R.transposed();
+        s.I = R * body.J_body * R.transposed();
+    });
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
 
     colour();

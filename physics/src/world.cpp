@@ -493,16 +493,21 @@ void World::step(float h) {
 int World::rotation_substeps(double time) const {
     const bool stiff = params_.integrator == Integrator::RK4 || params_.integrator == Integrator::ExplicitEuler;
     const double turn = stiff ? kMaxTurnRK4 : kMaxTurn;
-    double needed = 1.0;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        const RigidBody& body = rigid_[b];
-        if (body.fixed || asleep_[b]) continue;
-        const RigidMotion m = rigid_motion(b);
-        needed = std::max(needed, time * length(m.omega) / turn);
-        if (stiff && body.principal_moments.x > 0.0) {
-            needed = std::max(needed, time * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
+    // The largest over the bodies, on every thread (a maximum is the same in any order).
+    std::vector<double> most_needed(std::size_t(4 * pool_->threads()), 1.0);
+    for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        double& needed = most_needed[chunk];
+        for (std::size_t b = begin; b < end; ++b) {
+            const RigidBody& body = rigid_[b];
+            if (body.fixed || asleep_[b]) continue;
+            const RigidMotion m = rigid_motion(b);
+            needed = std::max(needed, time * length(m.omega) / turn);
+            if (stiff && body.principal_moments.x > 0.0) {
+                needed = std::max(needed, time * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
+            }
         }
-    }
+    });
+    const double needed = *std::max_element(most_needed.begin(), most_needed.end());
     const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
     return needed >= most ? int(most) : int(std::ceil(needed));
 }
@@ -586,10 +591,15 @@ int World::begin_contacts(double interval, int steps) {
 // its corners have moved on, and impulses found for where it was would no longer stop it (and
 // could throw it). Balls are left out: turning changes neither their shape nor their inertia.
 int World::contact_intervals(double time) const {
-    double fastest = 0.0;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        if (!rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) fastest = std::max(fastest, length(rigid_motion(b).omega));
-    }
+    std::vector<double> fastest_in(std::size_t(4 * pool_->threads()), 0.0);
+    for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            if (!rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) {
+                fastest_in[chunk] = std::max(fastest_in[chunk], length(rigid_motion(b).omega));
+            }
+        }
+    });
+    const double fastest = *std::max_element(fastest_in.begin(), fastest_in.end());
     const double needed = std::ceil(time * fastest / kMaxContactTurn);
     const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
     return needed >= most ? int(most) : std::max(1, int(needed));
