@@ -98,14 +98,17 @@ void World::update_sleep() {
         overlapping[c.a] = 1;
         if (c.b >= 0) overlapping[std::size_t(c.b)] = 1;
     }
+    // Each body's own rest time, on every thread.
+    for_chunks(pool_.get(), n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            if (rigid_[b].fixed || asleep_[b]) continue;
+            const RigidMotion m = rigid_motion(b);
+            const double speed = length(m.v) + length(m.omega) * rigid_[b].bounding_radius;
+            sleep_.rest_time[b] = speed < kSleepSpeed && !overlapping[b] ? sleep_.rest_time[b] + dt : 0.0;
+        }
+    });
     bool any_rested = false;
-    for (std::size_t b = 0; b < n; ++b) {
-        if (rigid_[b].fixed || asleep_[b]) continue;
-        const RigidMotion m = rigid_motion(b);
-        const double speed = length(m.v) + length(m.omega) * rigid_[b].bounding_radius;
-        sleep_.rest_time[b] = speed < kSleepSpeed && !overlapping[b] ? sleep_.rest_time[b] + dt : 0.0;
-        any_rested = any_rested || sleep_.rest_time[b] >= kTimeToSleep;
-    }
+    for (std::size_t b = 0; b < n && !any_rested; ++b) any_rested = !rigid_[b].fixed && !asleep_[b] && sleep_.rest_time[b] >= kTimeToSleep;
     if (!params_.sleeping || !any_rested) return;
 
     // The islands of the awake bodies, what leans on something fixed, and what is held.
