@@ -57,7 +57,8 @@ int sweep_axis(std::span<const Aabb> boxes) {
 
 }  // namespace
 
-void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet) {
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet,
+                       ThreadPool* pool) {
     out.clear();
     const int axis = sweep_axis(boxes);
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -78,17 +79,24 @@ void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, 
     // Each box meets the ones that start after it and before it ends. Boxes that start together
     // may come in either order (either way finds their pair), and the pairs are sorted at the
     // end, so nothing depends on how the sort breaks ties.
-    for (std::size_t i = 0; i < sweep.size(); ++i) {
-        const Entry& a = sweep[i];
-        const bool a_quiet = !quiet.empty() && quiet[a.index];
-        for (std::size_t j = i + 1; j < sweep.size() && sweep[j].lo <= a.hi; ++j) {
-            const Entry& b = sweep[j];
-            if (a_quiet && quiet[b.index]) continue;
-            if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v) {
-                out.push_back({std::min(a.index, b.index), std::max(a.index, b.index)});
+    const auto sweep_from = [&](std::size_t begin, std::size_t end, std::vector<BodyPair>& found) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Entry& a = sweep[i];
+            const bool a_quiet = !quiet.empty() && quiet[a.index];
+            for (std::size_t j = i + 1; j < sweep.size() && sweep[j].lo <= a.hi; ++j) {
+                const Entry& b = sweep[j];
+                if (a_quiet && quiet[b.index]) continue;
+                if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v) {
+                    found.push_back({std::min(a.index, b.index), std::max(a.index, b.index)});
+                }
             }
         }
-    }
+    };
+    std::vector<std::vector<BodyPair>> found(pool ? std::size_t(4 * pool->threads()) : 1);
+    const std::size_t chunks = for_chunks(pool, sweep.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        sweep_from(begin, end, chunk == 0 ? out : found[chunk]);
+    });
+    for (std::size_t chunk = 1; chunk < chunks; ++chunk) out.insert(out.end(), found[chunk].begin(), found[chunk].end());
     std::sort(out.begin(), out.end());
 }
 

@@ -32,7 +32,7 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
     // Two bodies each asleep or fixed are not paired at all (they are not tested: sleep.h).
     scratch.quiet.resize(n);
     for (std::size_t b = 0; b < n; ++b) scratch.quiet[b] = bodies[b].fixed || (!asleep.empty() && asleep[b]) ? 1 : 0;
-    overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet);
+    overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
     const std::size_t most = pool ? 4 * std::size_t(pool->threads()) : 1;
     if (scratch.found.size() < most) {
         scratch.found.resize(most);

@@ -177,7 +177,7 @@ void BM_BroadPhase(benchmark::State& state) {
     }
     state.counters["pairs"] = double(pairs.size());
 }
-BENCHMARK(BM_BroadPhase)->ArgsProduct({{0, 1}, {300, 1000}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BroadPhase)->ArgsProduct({{0, 1}, {300, 1000, 3000}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/collide.h"
+#include "physics/thread_pool.h"
 #include "physics/vec3.h"
 
 namespace softbody {
@@ -41,6 +42,8 @@ struct BodyPair {
 // Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes overlapping one on the
 // sweep axis.
 // `quiet` (empty: none): boxes so marked (bodies asleep or fixed) are not paired with one another.
-void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {});
+// With a `pool`, the sweep runs on its threads in chunks of boxes (the pairs sorted all the same).
+void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {},
+                       ThreadPool* pool = nullptr);
 
 }  // namespace softbody
