@@ -12,7 +12,7 @@ namespace {
 
 constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
 constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
-constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity more than this ends them
+constexpr float kSettled = 1e-5f;      // m/s: a pass that moves no velocity more than this ends them
 // m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
 // triangles between them should not stand off it by more than that.
@@ -180,8 +180,9 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         }
         // Within reach by the nearest point, not just by the boxes: a particle's box meets a
         // dozen small triangles of which one or two can matter.
+        const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
+        pair.reach = r;
         if (faces) {
-            const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
             const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
             const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
             const float distance = length(away);
@@ -191,7 +192,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
                 nearest_away = away;
             }
             pair.found_at = distance;
-            pair.reach = r;
             pair.away = away;
         }
         out.push_back(pair);
@@ -212,6 +212,7 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                         const Params& world, double dt, ThreadPool& pool) {
     pairs_.clear();
+    spans_.clear();
     rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
     bool wanted = false, any_faces = false;
@@ -303,6 +304,14 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             for (std::size_t k = 0; k < chunks; ++k) pairs_.insert(pairs_.end(), chunk_pairs_[k].begin(), chunk_pairs_[k].end());
         }
     }
+    // begin_substep's spans: about kChunk pairs each, cut only where one particle's pairs
+    // with a body end (its contacts are chosen among them).
+    spans_.assign(1, 0);
+    for (std::size_t k = 1; k < pairs_.size(); ++k) {
+        const Pair &q = pairs_[k - 1], &p = pairs_[k];
+        if (k - spans_.back() >= kChunk && (p.a != q.a || p.p != q.p || p.b != q.b)) spans_.push_back(k);
+    }
+    if (!pairs_.empty()) spans_.push_back(pairs_.size());
     // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
     // vertices and points along its edges, hull_feature), against the triangles whose boxes
     // its box meets (a query of the soft body's tree per point), kept when within reach by the
@@ -350,51 +359,61 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     return !pairs_.empty() || !rigid_pairs_.empty();
 }
 
-// The contact of one pair where the substep begins: the nearest point, its weights and normal,
-// Eq. 38's denominator and the closing speed. False when out of reach for the rest of the tick.
-bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const {
+// One pair where the substep begins: the nearest point's weights and the way from it to the
+// particle. False when out of reach for the rest of the tick, or when no impulse could move
+// either side (every particle it weighs fixed). All that choosing among a particle's pairs
+// needs; the rest only for the pairs chosen (make_contact).
+bool SoftContacts::nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const {
     const SoftBody& A = bodies[pair.a];
     const SoftBody& B = bodies[pair.b];
+    prim_points(pair, out.other);
+    const Vec3 p = A.x[pair.p];
+    const Vec3 x0 = B.x[out.other[0]], x1 = B.x[out.other[1]], x2 = B.x[out.other[2]];
+    const bool point = out.other[0] == out.other[1];
+    out.w = point ? std::array<float, 3>{1.0f, 0.0f, 0.0f} : nearest_on_triangle(p, x0, x1, x2);
+    out.away = p - (x0 * out.w[0] + x1 * out.w[1] + x2 * out.w[2]);
+    out.dist = length(out.away);
+    // Within reach of this tick only (the pair was found for the whole of it).
+    if (out.dist - pair.distance > pair.reach) return false;
+    if (point) out.w[1] = out.w[2] = 0.0f;
+    float inv = A.inv_mass[pair.p];
+    for (int k = 0; k < 3; ++k) inv += out.w[std::size_t(k)] * out.w[std::size_t(k)] * B.inv_mass[out.other[k]];
+    if (!(inv > 0.0f)) return false;
+    out.inv_mass_sum = inv;
+    // Which way the normal points (make_contact): on the surface itself, the face's.
+    out.way = out.dist > 1e-7f ? out.away : point ? Vec3{0.0f, 0.0f, 1.0f} : cross(x1 - x0, x2 - x0);
+    return true;
+}
+
+// The contact of a chosen pair: its weights and normal, Eq. 38's denominator and the closing speed.
+void SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const {
+    const SoftBody& A = bodies[pair.a];
+    const SoftBody& B = bodies[pair.b];
+    c = Active{};
     c.c.body_a = pair.a;
     c.c.particle = pair.p;
     c.c.body_b = pair.b;
-    prim_points(pair, c.c.other);
-    const Vec3 p = A.x[pair.p];
-    const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
-    std::array<float, 3> w{1.0f, 0.0f, 0.0f};
-    if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
-    const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
-    Vec3 n = p - q;
-    const float dist = length(n);
-    if (dist > 1e-7f) {
-        n = n / dist;
+    for (int k = 0; k < 3; ++k) {
+        c.c.other[k] = near.other[k];
+        c.c.weight[k] = near.w[std::size_t(k)];
+    }
+    Vec3 n = near.away;
+    if (near.dist > 1e-7f) {
+        n = n / near.dist;
     } else {
         // On the surface itself: the face's normal (the way the face is wound).
-        n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
-        const float l = length(n);
-        n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+        const float l = length(near.way);
+        n = l > 0.0f ? near.way / l : Vec3{0.0f, 0.0f, 1.0f};
     }
-    const float gap = dist - pair.distance;
-    // Within reach of this tick only (the pair was found for the whole of it).
-    const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
-    if (gap > reach) return false;
-    c.c.weight[0] = w[0];
-    c.c.weight[1] = w[1];
-    c.c.weight[2] = w[2];
-    if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
     c.c.normal = Vec3d(n);
-    c.c.separation = gap;
+    c.c.separation = near.dist - pair.distance;
     c.c.distance = pair.distance;
     // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
     // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
-    float inv = A.inv_mass[pair.p];
-    for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
-    if (!(inv > 0.0f)) return false;
-    c.inv_mass_sum = inv;
+    c.inv_mass_sum = near.inv_mass_sum;
     Vec3 v_rel = A.v[pair.p];
     for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
     c.bounce = -dot(v_rel, n);
-    return true;
 }
 
 void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
@@ -460,48 +479,48 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
     // is one (a particle between two layers of a folded sheet). The other triangles within
     // reach would only push along nearly the same normal, and cost the solver's passes. Found
     // again every substep: a particle sliding fast crosses a small triangle in a tick.
-    // Each pair's contact on its own (in chunks over the threads), then the choice in pair order.
-    made_.resize(pairs_.size());
-    made_ok_.resize(pairs_.size());
-    const std::size_t chunks = (pairs_.size() + kChunk - 1) / kChunk;
-    const auto make = [&](std::size_t chunk) {
-        const std::size_t end = std::min(pairs_.size(), (chunk + 1) * kChunk);
-        for (std::size_t k = chunk * kChunk; k < end; ++k) {
-            made_[k] = Active{};
-            made_ok_[k] = make_contact(bodies, pairs_[k], made_[k]);
+    // Each of find's spans (whole particles' pairs) on the pool's threads, its contacts chosen
+    // into a list of its own; the lists joined in span order: the same contacts in the same
+    // order at any thread count.
+    const std::size_t spans = spans_.empty() ? 0 : spans_.size() - 1;
+    if (chunk_active_.size() < spans) chunk_active_.resize(spans);
+    const auto make = [&](std::size_t span) {
+        std::vector<Active>& out = chunk_active_[span];
+        out.clear();
+        // The group's choice so far: the nearest (same), and the nearest across it (across).
+        std::size_t same = 0, across = 0;
+        Near near[2], next;
+        const auto flush = [&] {
+            if (same) make_contact(bodies, pairs_[same - 1], near[0], out.emplace_back());
+            if (across) make_contact(bodies, pairs_[across - 1], near[1], out.emplace_back());
+            same = across = 0;
+        };
+        for (std::size_t k = spans_[span]; k < spans_[span + 1]; ++k) {
+            const Pair& pair = pairs_[k];
+            if (k > spans_[span] && (pair.a != pairs_[k - 1].a || pair.p != pairs_[k - 1].p || pair.b != pairs_[k - 1].b)) flush();
+            if (!nearest(bodies, pair, next)) continue;
+            if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
+                make_contact(bodies, pair, next, out.emplace_back());
+                continue;
+            }
+            if (!same) {
+                same = k + 1;
+                near[0] = next;
+            } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
+                if (next.dist < near[0].dist) {
+                    same = k + 1;
+                    near[0] = next;
+                }
+            } else if (!across || next.dist < near[1].dist) {
+                across = k + 1;
+                near[1] = next;
+            }
         }
+        flush();
     };
-    if (chunks == 1) make(0);
-    else if (chunks > 1) pool.run(chunks, make);
-    std::size_t group = 0;
-    std::uint32_t group_a = ~0u, group_p = ~0u, group_b = ~0u;
-    for (std::uint32_t k = 0; k < pairs_.size(); ++k) {
-        const Pair& pair = pairs_[k];
-        if (!made_ok_[k]) continue;
-        const Active& c = made_[k];
-        if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
-            active_.push_back(c);
-            continue;
-        }
-        if (pair.a != group_a || pair.p != group_p || pair.b != group_b) {
-            group = active_.size();
-            group_a = pair.a;
-            group_p = pair.p;
-            group_b = pair.b;
-        }
-        if (active_.size() == group) {
-            active_.push_back(c);
-            continue;
-        }
-        const bool opposite = dot(c.c.normal, active_[group].c.normal) < 0.0;
-        if (!opposite) {
-            if (c.c.separation < active_[group].c.separation) active_[group] = c;
-        } else if (active_.size() == group + 1) {
-            active_.push_back(c);
-        } else if (c.c.separation < active_[group + 1].c.separation) {
-            active_[group + 1] = c;
-        }
-    }
+    if (spans == 1) make(0);
+    else if (spans > 1) pool.run(spans, make);
+    for (std::size_t k = 0; k < spans; ++k) active_.insert(active_.end(), chunk_active_[k].begin(), chunk_active_[k].end());
 }
 
 void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
@@ -629,7 +648,12 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         c.friction = {};
     }
     for (int pass = 0; pass < kPasses; ++pass) {
-        float largest = 0.0f;  // the largest velocity change of the pass
+        // Where the pass starts, to say how far it moved each velocity (below).
+        pass_v_.assign(local_v_.begin(), local_v_.end());
+        if (!rigid_active_.empty()) {
+            pass_dP_.assign(dP_.begin(), dP_.end());
+            pass_dL_.assign(dL_.begin(), dL_.end());
+        }
         for (RigidActive& c : rigid_active_) {
             const RigidBody& body = rigid[c.rigid];
             const double k_n = rigid_denominator(c, c.n);
@@ -652,7 +676,6 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             const Vec3d df = total - c.friction;
             c.friction = total;
             if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
-            largest = std::max(largest, float((std::abs(dl) + length(df)) * k_n));
         }
         for (Active& c : active_) {
             const Vec3 n = to_float(c.c.normal);
@@ -672,10 +695,24 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             const Vec3 df = total - c.friction;
             c.friction = total;
             if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
-            largest = std::max(largest, (std::abs(dl) + length(df)) * c.inv_mass_sum);
         }
-        // Converged: no contact's velocity moved by more than kSettled in the whole pass.
-        if (largest < kSettled) break;
+        // Converged: the pass moved no particle's velocity, and no rigid body's at its farthest
+        // point, by more than kSettled. Measured on the velocities, not on each contact's
+        // impulse: where two contacts hold the same particles (a particle of each body over the
+        // other's triangle, at the same spot), passes go on shifting the load from one to the
+        // other by as much as they like while no velocity moves, and the contacts' impulses
+        // would never say the passes are done.
+        float moved = 0.0f;
+        for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
+            const Vec3 d = local_v_[slot] - pass_v_[slot];
+            moved = std::max(moved, dot(d, d));
+        }
+        moved = std::sqrt(moved);
+        for (std::size_t r = 0; r < pass_dP_.size() && !rigid_active_.empty(); ++r) {
+            const Vec3d dv = (dP_[r] - pass_dP_[r]) * rigid[r].inv_mass, dw = motions_[r].J_inv * (dL_[r] - pass_dL_[r]);
+            moved = std::max(moved, float(length(dv) + length(dw) * rigid[r].bounding_radius));
+        }
+        if (moved < kSettled) break;
     }
     // A rigid body's momenta take the impulses; its centre and turn follow by h times the
     // velocity and spin they changed (dv = dP / m, dw = J_world^-1 dL).

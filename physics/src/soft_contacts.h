@@ -118,7 +118,16 @@ private:
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
     void find_particle(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, const Box3f& whole_b,
                        std::vector<Pair>& out) const;
-    bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
+    struct Near {
+        std::uint32_t other[3];    // the triangle's corners (a particle three times)
+        std::array<float, 3> w;    // the nearest point's weights
+        Vec3 away;                 // from the nearest point to the particle
+        float dist = 0.0f;         // |away|
+        Vec3 way;                  // which way the normal points: away, or the face's on the face
+        float inv_mass_sum = 0.0f;
+    };
+    bool nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const;
+    void make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const;
 
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
     struct RigidPair {
@@ -152,8 +161,8 @@ private:
     std::vector<Pair> pairs_;
     std::vector<Active> active_;
     std::vector<std::vector<Pair>> chunk_pairs_;  // find's lists, one per chunk of particles
-    std::vector<Active> made_;                    // begin_substep: each pair's contact
-    std::vector<std::uint8_t> made_ok_;           // and whether it is within reach
+    std::vector<std::size_t> spans_;              // begin_substep's spans of pairs_: [spans_[k], spans_[k + 1])
+    std::vector<std::vector<Active>> chunk_active_;  // begin_substep's contacts, one list per span
     std::vector<SoftContact> touching_;
     std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
     // solve's compact copy: per body and particle its slot (kNoSlot: none); per slot the
@@ -162,6 +171,8 @@ private:
     static constexpr std::uint32_t kNoSlot = ~0u;
     std::vector<std::vector<std::uint32_t>> slot_;
     std::vector<Vec3> local_v_, local_dv_;
+    std::vector<Vec3> pass_v_;              // local_v_ as a pass began
+    std::vector<Vec3d> pass_dP_, pass_dL_;  // dP_, dL_ as a pass began
     std::vector<float> local_im_;
     std::vector<std::array<std::uint32_t, 2>> local_of_;
     std::vector<std::uint8_t> local_pushed_;
