@@ -252,16 +252,21 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     const auto meets_rigid = [&](std::size_t r, std::size_t b) {
         return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
     };
-    // Which pairs of bodies can meet at all; each body's tree refit only when some can.
+    // Which pairs of bodies can meet at all; each body's tree refit only when some can, each
+    // body's on a thread of the pool (a tree is its body's alone).
     const auto meets = [&](std::size_t a, std::size_t b) {
         if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
         return whole[a].overlaps(whole[b]);
     };
+    std::vector<std::uint32_t> refit;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bool needed = false;
         for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
         for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(r, b);
-        if (!needed) continue;
+        if (needed) refit.push_back(std::uint32_t(b));
+    }
+    const auto fit = [&](std::size_t k) {
+        const std::size_t b = refit[k];
         const SoftBody& body = bodies[b];
         Surface& s = surfaces_[b];
         const std::vector<float>& reach = reach_[b];
@@ -281,7 +286,9 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         }
         if (s.tree.empty()) s.tree.build(s.boxes);
         else s.tree.refit(s.boxes);
-    }
+    };
+    if (refit.size() == 1) fit(0);
+    else if (refit.size() > 1) pool.run(refit.size(), fit);
     // Each particle's pairs with a body it can meet, its particles in chunks spread over the
     // threads, each chunk's pairs in a list of its own, joined in particle order afterwards: the
     // pairs (and so every contact and impulse) come in the same order at any thread count.
@@ -680,21 +687,25 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         for (Active& c : active_) {
             const Vec3 n = to_float(c.c.normal);
             // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
-            const float v_n = dot(relative(c), n);
+            Vec3 v = relative(c);
+            const float v_n = dot(v, n);
             const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
             const float dl = lambda - float(c.c.normal_impulse);
             c.c.normal_impulse = lambda;
-            if (dl != 0.0f) apply(c, n * dl);
             // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
             // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
-            const Vec3 v = relative(c);
+            // The slide after the normal impulse: an impulse J on the contact (J on the particle,
+            // -w_i J on the corners, four different particles) changes v_rel by J times Eq. 38's
+            // denominator, so v_rel follows without gathering the velocities again, and both
+            // impulses go out together.
+            v += n * (dl * c.inv_mass_sum);
             const Vec3 v_t = v - n * dot(v, n);
             Vec3 total = c.friction - v_t / c.inv_mass_sum;
             const float size = length(total);
             if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
-            const Vec3 df = total - c.friction;
+            const Vec3 J = n * dl + (total - c.friction);
             c.friction = total;
-            if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
+            if (J.x != 0.0f || J.y != 0.0f || J.z != 0.0f) apply(c, J);
         }
         // Converged: the pass moved no particle's velocity, and no rigid body's at its farthest
         // point, by more than kSettled. Measured on the velocities, not on each contact's
