@@ -12,6 +12,9 @@ namespace {
 
 constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
 constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
+// A particle's choice of nearest triangle is kept while it moved, against the triangles in
+// reach, by at most this part of the contact distance since the tick began (begin_substep).
+constexpr float kKeepChoice = 0.01f;
 constexpr float kSettled = 1e-5f;      // m/s: a pass that moves no velocity more than this ends them
 // m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
@@ -311,14 +314,51 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             for (std::size_t k = 0; k < chunks; ++k) pairs_.insert(pairs_.end(), chunk_pairs_[k].begin(), chunk_pairs_[k].end());
         }
     }
-    // begin_substep's spans: about kChunk pairs each, cut only where one particle's pairs
-    // with a body end (its contacts are chosen among them).
+    // begin_substep's groups, one particle's pairs with one body each (its contacts are chosen
+    // among them), and its spans, whole groups of about kChunk pairs. Each group's choice is
+    // made anew in the tick's first substep.
+    groups_.clear();
     spans_.assign(1, 0);
-    for (std::size_t k = 1; k < pairs_.size(); ++k) {
-        const Pair &q = pairs_[k - 1], &p = pairs_[k];
-        if (k - spans_.back() >= kChunk && (p.a != q.a || p.p != q.p || p.b != q.b)) spans_.push_back(k);
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        const Pair& p = pairs_[k];
+        if (k > 0 && p.a == pairs_[k - 1].a && p.p == pairs_[k - 1].p && p.b == pairs_[k - 1].b) continue;
+        if (k - (spans_.back() < groups_.size() ? groups_[spans_.back()] : k) >= kChunk) spans_.push_back(groups_.size());
+        groups_.push_back(k);
     }
-    if (!pairs_.empty()) spans_.push_back(pairs_.size());
+    if (!groups_.empty()) spans_.push_back(groups_.size());
+    groups_.push_back(pairs_.size());
+    choice_.assign(groups_.size() - 1, {0, 0});
+    moving_.assign(groups_.size() - 1, 0);
+    fresh_ = true;
+    // Each group's corners, once each (its triangles share most), and the particles D reads
+    // (the groups' particles and corners), once each.
+    corners_.clear();
+    corners_begin_.assign(1, 0);
+    touched_.clear();
+    moved_.resize(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) moved_[b].assign(bodies[b].particle_count(), -1.0f);
+    const auto touch = [&](std::uint32_t b, std::uint32_t i) {
+        if (moved_[b][i] == 0.0f) return;
+        moved_[b][i] = 0.0f;
+        touched_.push_back({b, i});
+    };
+    for (std::size_t group = 0; group + 1 < groups_.size(); ++group) {
+        const Pair& first = pairs_[groups_[group]];
+        const std::vector<std::uint32_t>& triangles = surfaces_[first.b].triangles;
+        if (!triangles.empty()) {
+            touch(first.a, first.p);
+            const std::size_t from = corners_.size();
+            for (std::size_t k = groups_[group]; k < groups_[group + 1]; ++k) {
+                for (int j = 0; j < 3; ++j) {
+                    const std::uint32_t v = triangles[3 * pairs_[k].prim + std::uint32_t(j)];
+                    if (std::find(corners_.begin() + std::ptrdiff_t(from), corners_.end(), v) != corners_.end()) continue;
+                    corners_.push_back(v);
+                    touch(first.b, v);
+                }
+            }
+        }
+        corners_begin_.push_back(corners_.size());
+    }
     // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
     // vertices and points along its edges, hull_feature), against the triangles whose boxes
     // its box meets (a query of the soft body's tree per point), kept when within reach by the
@@ -484,49 +524,87 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
     // One contact per particle and surface: its nearest triangle (the pairs of one particle and
     // body come one after another), and the nearest on the other side of the particle if there
     // is one (a particle between two layers of a folded sheet). The other triangles within
-    // reach would only push along nearly the same normal, and cost the solver's passes. Found
-    // again every substep: a particle sliding fast crosses a small triangle in a tick.
-    // Each of find's spans (whole particles' pairs) on the pool's threads, its contacts chosen
-    // into a list of its own; the lists joined in span order: the same contacts in the same
-    // order at any thread count.
+    // reach would only push along nearly the same normal, and cost the solver's passes.
+    // Which triangle is nearest is chosen where the tick begins, and again in every substep
+    // for a particle that has moved against the other surface since then: a particle sliding
+    // fast crosses a small triangle in a tick. Moved by how much: each pair's distance changes
+    // by at most D = |p - p_0| + max |x_i - x_i,0| (the particle's motion and the farthest
+    // corner's among its triangles: the nearest point's weights on the moved corners are a
+    // point at most that far from where it was), so while D <= kKeepChoice d the triangle
+    // chosen is at most 2 D farther than the nearest, a gap 2% of the contact distance d off
+    // at most; past that, the group is chosen anew every substep until the tick ends. The
+    // chosen triangles' nearest points and normals are found anew every substep either way.
+    // A body resting on another keeps its choice (its particles move micrometres in a tick)
+    // and pays for one nearest point a contact, not one for every triangle in reach.
+    // Each of find's spans (whole groups) on the pool's threads, its contacts into a list of
+    // its own; the lists joined in span order: the same contacts in the same order at any
+    // thread count.
+    // Each touched particle where the tick's first substep began, then how far it has gone
+    // since (squared).
+    if (fresh_) {
+        x_ref_.resize(touched_.size());
+        for (std::size_t k = 0; k < touched_.size(); ++k) x_ref_[k] = bodies[touched_[k][0]].x[touched_[k][1]];
+    } else {
+        for (std::size_t k = 0; k < touched_.size(); ++k) {
+            const auto [b, i] = touched_[k];
+            const Vec3 d = bodies[b].x[i] - x_ref_[k];
+            moved_[b][i] = dot(d, d);
+        }
+    }
     const std::size_t spans = spans_.empty() ? 0 : spans_.size() - 1;
     if (chunk_active_.size() < spans) chunk_active_.resize(spans);
     const auto make = [&](std::size_t span) {
         std::vector<Active>& out = chunk_active_[span];
         out.clear();
-        // The group's choice so far: the nearest (same), and the nearest across it (across).
-        std::size_t same = 0, across = 0;
         Near near[2], next;
-        const auto flush = [&] {
+        for (std::size_t g = spans_[span]; g < spans_[span + 1]; ++g) {
+            const std::size_t begin = groups_[g], end = groups_[g + 1];
+            const Pair& first = pairs_[begin];
+            const bool faces = !surfaces_[first.b].triangles.empty();
+            if (faces && !fresh_ && !moving_[g]) {
+                // D, against kKeepChoice d.
+                const std::vector<float>& moved_b = moved_[first.b];
+                float corner = 0.0f;
+                for (std::size_t k = corners_begin_[g]; k < corners_begin_[g + 1]; ++k) corner = std::max(corner, moved_b[corners_[k]]);
+                const float moved = std::sqrt(moved_[first.a][first.p]) + std::sqrt(corner);
+                if (moved <= kKeepChoice * first.distance) {
+                    for (const std::uint32_t k : choice_[g]) {
+                        if (k && nearest(bodies, pairs_[k - 1], next)) make_contact(bodies, pairs_[k - 1], next, out.emplace_back());
+                    }
+                    continue;
+                }
+                moving_[g] = 1;
+            }
+            // The group's choice: the nearest (same), and the nearest across it (across).
+            std::uint32_t same = 0, across = 0;
+            for (std::size_t k = begin; k < end; ++k) {
+                const Pair& pair = pairs_[k];
+                if (!nearest(bodies, pair, next)) continue;
+                if (!faces) {  // a point cloud's balls: every one it touches
+                    make_contact(bodies, pair, next, out.emplace_back());
+                    continue;
+                }
+                if (!same) {
+                    same = std::uint32_t(k + 1);
+                    near[0] = next;
+                } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
+                    if (next.dist < near[0].dist) {
+                        same = std::uint32_t(k + 1);
+                        near[0] = next;
+                    }
+                } else if (!across || next.dist < near[1].dist) {
+                    across = std::uint32_t(k + 1);
+                    near[1] = next;
+                }
+            }
             if (same) make_contact(bodies, pairs_[same - 1], near[0], out.emplace_back());
             if (across) make_contact(bodies, pairs_[across - 1], near[1], out.emplace_back());
-            same = across = 0;
-        };
-        for (std::size_t k = spans_[span]; k < spans_[span + 1]; ++k) {
-            const Pair& pair = pairs_[k];
-            if (k > spans_[span] && (pair.a != pairs_[k - 1].a || pair.p != pairs_[k - 1].p || pair.b != pairs_[k - 1].b)) flush();
-            if (!nearest(bodies, pair, next)) continue;
-            if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
-                make_contact(bodies, pair, next, out.emplace_back());
-                continue;
-            }
-            if (!same) {
-                same = k + 1;
-                near[0] = next;
-            } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
-                if (next.dist < near[0].dist) {
-                    same = k + 1;
-                    near[0] = next;
-                }
-            } else if (!across || next.dist < near[1].dist) {
-                across = k + 1;
-                near[1] = next;
-            }
+            choice_[g] = {same, across};
         }
-        flush();
     };
     if (spans == 1) make(0);
     else if (spans > 1) pool.run(spans, make);
+    fresh_ = false;
     for (std::size_t k = 0; k < spans; ++k) active_.insert(active_.end(), chunk_active_[k].begin(), chunk_active_[k].end());
 }
 

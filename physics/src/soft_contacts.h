@@ -13,7 +13,8 @@
 //                  fixed for the substep, so that a particle that would cross the surface in
 //                  this step is still pushed back the way it came. Of each particle's
 //                  triangles in reach it keeps the nearest (and the nearest across it, between
-//                  two layers of a sheet)
+//                  two layers of a sheet): chosen where the tick begins, and anew every substep
+//                  once the particle or those triangles have moved more than 1% of d since
 //   solve          after the integrator's free step: impulses along n (Eq. 38 with the
 //                  particle as body 1, no rotation term; body 2 the surface point, whose
 //                  inverse mass is sum w_i^2 / m_i over its three particles) so that the gap
@@ -74,8 +75,8 @@ public:
     bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
               const Params& world, double dt, ThreadPool& pool);
     bool empty() const { return pairs_.empty(); }
-    // Before the integrator moves the particles: each pair's nearest point and normal.
-    // (Each pair's nearest point on the pool's threads; which are kept, in pair order after.)
+    // Before the integrator moves the particles: each kept pair's nearest point and normal.
+    // (Each particle's pairs on the pool's threads, in spans of whole particles, joined in order.)
     void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                        ThreadPool& pool);
     // After the integrator's free step of h (and the rigid contacts): the impulses, on the
@@ -161,7 +162,16 @@ private:
     std::vector<Pair> pairs_;
     std::vector<Active> active_;
     std::vector<std::vector<Pair>> chunk_pairs_;  // find's lists, one per chunk of particles
-    std::vector<std::size_t> spans_;              // begin_substep's spans of pairs_: [spans_[k], spans_[k + 1])
+    std::vector<std::size_t> groups_;             // where each particle's pairs with a body begin in pairs_ (and the end)
+    std::vector<std::size_t> spans_;              // begin_substep's spans of groups_: [spans_[k], spans_[k + 1])
+    std::vector<std::array<std::uint32_t, 2>> choice_;  // per group: its nearest pair and the nearest across, + 1 (0: none)
+    std::vector<std::uint8_t> moving_;            // per group: chosen anew every substep for the rest of the tick
+    std::vector<std::uint32_t> corners_;          // per group: its triangles' corners, once each,
+    std::vector<std::size_t> corners_begin_;      // from corners_[corners_begin_[g]] to corners_[corners_begin_[g + 1]]
+    std::vector<std::array<std::uint32_t, 2>> touched_;  // the particles the groups' D reads: body, particle
+    std::vector<Vec3> x_ref_;                     // each touched particle where the tick's first substep began
+    std::vector<std::vector<float>> moved_;       // per body and particle: how far it has gone since, squared
+    bool fresh_ = false;                          // find has run, no substep has begun since
     std::vector<std::vector<Active>> chunk_active_;  // begin_substep's contacts, one list per span
     std::vector<SoftContact> touching_;
     std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
