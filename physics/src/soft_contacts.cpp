@@ -15,6 +15,9 @@ constexpr int kPasses = 8;             // at most, over every contact of a subst
 // A particle's choice of nearest triangle is kept while it moved, against the triangles in
 // reach, by at most this part of the contact distance since the tick began (begin_substep).
 constexpr float kKeepChoice = 0.01f;
+// m: how much farther than its tick needs the search for pairs reaches, so that its pairs
+// serve the ticks after it while the particles move less than that (find).
+constexpr float kReuseMargin = 5e-4f;
 constexpr float kSettled = 1e-5f;      // m/s: a pass that moves no velocity more than this ends them
 // m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
@@ -128,6 +131,8 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
     reach_.assign(bodies.size(), {});
     slot_.assign(bodies.size(), {});
     pairs_.clear();
+    spans_.clear();
+    reusable_ = false;
     active_.clear();
     touching_.clear();
     for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -166,7 +171,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
     const bool faces = !s.triangles.empty();
     const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
     if (!whole_b.overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) return;
-    const bool fixed_p = A.inv_mass[p] == 0.0f;
     const std::size_t group = out.size();
     float nearest = INFINITY;
     Vec3 nearest_away;
@@ -174,7 +178,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
         std::uint32_t v[3];
         prim_points(pair, v);
-        if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
         if (a == b) {
             // Self contact: never a triangle the particle is a corner of, nor one it was
             // within reach of at rest (the same stretch of surface).
@@ -214,8 +217,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
 
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                         const Params& world, double dt, ThreadPool& pool) {
-    pairs_.clear();
-    spans_.clear();
     rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
     bool wanted = false, any_faces = false;
@@ -224,7 +225,12 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         any_faces = any_faces || !surfaces_[b].triangles.empty();
     }
     const bool rigid_near = any_faces && !rigid.empty();
-    if (bodies.size() < 2 && !wanted && !rigid_near) return false;
+    if (bodies.size() < 2 && !wanted && !rigid_near) {
+        pairs_.clear();
+        spans_.clear();
+        reusable_ = false;
+        return false;
+    }
     const float h = float(dt), g = length(world.gravity);
     // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
     // speed, with gravity, twice what its last tick's forces added to the way it went, and a
@@ -261,6 +267,47 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
         return whole[a].overlaps(whole[b]);
     };
+    // The last tick's pairs again, when no particle can reach anything this tick that the
+    // search which found them did not cover: that search reached kReuseMargin farther than
+    // its tick needed, from where the particles were then, and each particle's reach now plus
+    // the farthest any particle has gone since is still within it (its box, the nearest-point
+    // test and the choice among a particle's triangles all cover this tick's then). A body
+    // resting on another moves micrometres a tick: its pairs are found once in many ticks.
+    // Not with rigid bodies within reach (their points are found every tick, in the trees).
+    std::vector<std::uint8_t> meeting(bodies.size() * bodies.size());
+    for (std::size_t a = 0; a < bodies.size(); ++a) {
+        for (std::size_t b = 0; b < bodies.size(); ++b) meeting[a * bodies.size() + b] = meets(a, b) ? 1 : 0;
+    }
+    bool rigid_meets = false;
+    for (std::size_t r = 0; r < rigid.size() && !rigid_meets; ++r) {
+        for (std::size_t b = 0; b < bodies.size() && !rigid_meets; ++b) rigid_meets = meets_rigid(r, b);
+    }
+    bool reuse = reusable_ && !rigid_meets && meeting == meeting_found_ && x_found_.size() == bodies.size();
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) reuse = x_found_[b].size() == bodies[b].particle_count();
+    float gone = 0.0f;  // squared
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) {
+        for (std::size_t i = 0; i < bodies[b].particle_count(); ++i) {
+            const Vec3 d = bodies[b].x[i] - x_found_[b][i];
+            gone = std::max(gone, dot(d, d));
+        }
+    }
+    gone = std::sqrt(gone);
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) {
+        for (std::size_t i = 0; i < bodies[b].particle_count() && reuse; ++i) reuse = reach_[b][i] + gone <= reach_found_[b][i];
+    }
+    if (reuse) {
+        choice_.assign(choice_.size(), {0, 0});
+        moving_.assign(moving_.size(), 0);
+        fresh_ = true;
+        return !pairs_.empty();
+    }
+    // Found anew: kReuseMargin farther than this tick needs.
+    pairs_.clear();
+    spans_.clear();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        for (float& r : reach_[b]) r += kReuseMargin;
+        whole[b] = {whole[b].lo - Vec3{kReuseMargin, kReuseMargin, kReuseMargin}, whole[b].hi + Vec3{kReuseMargin, kReuseMargin, kReuseMargin}};
+    }
     std::vector<std::uint32_t> refit;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bool needed = false;
@@ -402,6 +449,14 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
                 });
             }
         }
+    }
+    reusable_ = !rigid_meets && rigid_pairs_.empty();
+    meeting_found_ = std::move(meeting);
+    reach_found_ = reach_;
+    x_found_.resize(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        x_found_[b].resize(bodies[b].particle_count());
+        for (std::size_t i = 0; i < bodies[b].particle_count(); ++i) x_found_[b][i] = bodies[b].x[i];
     }
     return !pairs_.empty() || !rigid_pairs_.empty();
 }

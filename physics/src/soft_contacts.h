@@ -7,7 +7,7 @@
 // triangle, plus the particle's radius; a point cloud's particles are balls of half their
 // usual spacing). Speculative, as the rigid contacts are: the pairs are found once a tick
 // within how far their particles can move in it (a bounding-volume tree per body, refit every
-// tick: bvh.h), and each substep
+// tick: bvh.h; or the last search's pairs again, while they cover this tick), and each substep
 //   begin_substep  the nearest point and its normal where the substep begins (before the
 //                  integrator): n points from the surface toward the particle, and stays
 //                  fixed for the substep, so that a particle that would cross the surface in
@@ -67,6 +67,7 @@ public:
     // faces its particles' radius; the trees. Call whenever the bodies are built.
     void build(const std::vector<SoftBody>& bodies);
     // The pairs within reach over the tick of dt, found where the bodies are as it begins
+    // (or the last search's, when it reached far enough to cover this tick too)
     // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
     // particles may go in this one). Returns whether there are any.
     // `rigid`, `state`: the rigid bodies and Listing 10's flat state as the tick begins.
@@ -172,6 +173,12 @@ private:
     std::vector<Vec3> x_ref_;                     // each touched particle where the tick's first substep began
     std::vector<std::vector<float>> moved_;       // per body and particle: how far it has gone since, squared
     bool fresh_ = false;                          // find has run, no substep has begun since
+    // find's last search: whether its pairs can serve again, which bodies met, each particle's
+    // reach and position then.
+    bool reusable_ = false;
+    std::vector<std::uint8_t> meeting_found_;
+    std::vector<std::vector<float>> reach_found_;
+    std::vector<std::vector<Vec3>> x_found_;
     std::vector<std::vector<Active>> chunk_active_;  // begin_substep's contacts, one list per span
     std::vector<SoftContact> touching_;
     std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
