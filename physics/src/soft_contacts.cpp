@@ -12,7 +12,13 @@ namespace {
 
 constexpr float kPushSpeed = 1.0f;     // m/s: the fastest an overlap is pushed apart (as contact_solver.h)
 constexpr int kPasses = 8;             // at most, over every contact of a substep (Gauss-Seidel)
-constexpr float kSettled = 1e-5f;      // m/s: a pass that changes no velocity more than this ends them
+// A particle's choice of nearest triangle is kept while it moved, against the triangles in
+// reach, by at most this part of the contact distance since the tick began (begin_substep).
+constexpr float kKeepChoice = 0.01f;
+// m: how much farther than its tick needs the search for pairs reaches, so that its pairs
+// serve the ticks after it while the particles move less than that (find).
+constexpr float kReuseMargin = 5e-4f;
+constexpr float kSettled = 1e-5f;      // m/s: a pass that moves no velocity more than this ends them
 // m: the gap a rigid shape keeps from a soft body's triangles. Thinner than kSurfaceThickness:
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
 // triangles between them should not stand off it by more than that.
@@ -125,6 +131,8 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
     reach_.assign(bodies.size(), {});
     slot_.assign(bodies.size(), {});
     pairs_.clear();
+    spans_.clear();
+    reusable_ = false;
     active_.clear();
     touching_.clear();
     for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -163,7 +171,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
     const bool faces = !s.triangles.empty();
     const float d = (faces ? kSurfaceThickness : s.radius) + surfaces_[a].radius;
     if (!whole_b.overlaps(box_of(A.x[p], reach_[a][p] + surfaces_[a].radius))) return;
-    const bool fixed_p = A.inv_mass[p] == 0.0f;
     const std::size_t group = out.size();
     float nearest = INFINITY;
     Vec3 nearest_away;
@@ -171,7 +178,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         Pair pair{std::uint32_t(a), p, std::uint32_t(b), prim, d, 0.0f, 0.0f, {}};
         std::uint32_t v[3];
         prim_points(pair, v);
-        if (fixed_p && B.inv_mass[v[0]] == 0.0f && B.inv_mass[v[1]] == 0.0f && B.inv_mass[v[2]] == 0.0f) return;
         if (a == b) {
             // Self contact: never a triangle the particle is a corner of, nor one it was
             // within reach of at rest (the same stretch of surface).
@@ -180,8 +186,9 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         }
         // Within reach by the nearest point, not just by the boxes: a particle's box meets a
         // dozen small triangles of which one or two can matter.
+        const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
+        pair.reach = r;
         if (faces) {
-            const float r = reach_[a][p] + std::max({reach_[b][v[0]], reach_[b][v[1]], reach_[b][v[2]]});
             const auto w = nearest_on_triangle(A.x[p], B.x[v[0]], B.x[v[1]], B.x[v[2]]);
             const Vec3 away = A.x[p] - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]);
             const float distance = length(away);
@@ -191,7 +198,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
                 nearest_away = away;
             }
             pair.found_at = distance;
-            pair.reach = r;
             pair.away = away;
         }
         out.push_back(pair);
@@ -211,7 +217,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
 
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                         const Params& world, double dt, ThreadPool& pool) {
-    pairs_.clear();
     rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
     bool wanted = false, any_faces = false;
@@ -220,7 +225,12 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         any_faces = any_faces || !surfaces_[b].triangles.empty();
     }
     const bool rigid_near = any_faces && !rigid.empty();
-    if (bodies.size() < 2 && !wanted && !rigid_near) return false;
+    if (bodies.size() < 2 && !wanted && !rigid_near) {
+        pairs_.clear();
+        spans_.clear();
+        reusable_ = false;
+        return false;
+    }
     const float h = float(dt), g = length(world.gravity);
     // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
     // speed, with gravity, twice what its last tick's forces added to the way it went, and a
@@ -251,16 +261,62 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     const auto meets_rigid = [&](std::size_t r, std::size_t b) {
         return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
     };
-    // Which pairs of bodies can meet at all; each body's tree refit only when some can.
+    // Which pairs of bodies can meet at all; each body's tree refit only when some can, each
+    // body's on a thread of the pool (a tree is its body's alone).
     const auto meets = [&](std::size_t a, std::size_t b) {
         if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
         return whole[a].overlaps(whole[b]);
     };
+    // The last tick's pairs again, when no particle can reach anything this tick that the
+    // search which found them did not cover: that search reached kReuseMargin farther than
+    // its tick needed, from where the particles were then, and each particle's reach now plus
+    // the farthest any particle has gone since is still within it (its box, the nearest-point
+    // test and the choice among a particle's triangles all cover this tick's then). A body
+    // resting on another moves micrometres a tick: its pairs are found once in many ticks.
+    // Not with rigid bodies within reach (their points are found every tick, in the trees).
+    std::vector<std::uint8_t> meeting(bodies.size() * bodies.size());
+    for (std::size_t a = 0; a < bodies.size(); ++a) {
+        for (std::size_t b = 0; b < bodies.size(); ++b) meeting[a * bodies.size() + b] = meets(a, b) ? 1 : 0;
+    }
+    bool rigid_meets = false;
+    for (std::size_t r = 0; r < rigid.size() && !rigid_meets; ++r) {
+        for (std::size_t b = 0; b < bodies.size() && !rigid_meets; ++b) rigid_meets = meets_rigid(r, b);
+    }
+    bool reuse = reusable_ && !rigid_meets && meeting == meeting_found_ && x_found_.size() == bodies.size();
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) reuse = x_found_[b].size() == bodies[b].particle_count();
+    float gone = 0.0f;  // squared
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) {
+        for (std::size_t i = 0; i < bodies[b].particle_count(); ++i) {
+            const Vec3 d = bodies[b].x[i] - x_found_[b][i];
+            gone = std::max(gone, dot(d, d));
+        }
+    }
+    gone = std::sqrt(gone);
+    for (std::size_t b = 0; b < bodies.size() && reuse; ++b) {
+        for (std::size_t i = 0; i < bodies[b].particle_count() && reuse; ++i) reuse = reach_[b][i] + gone <= reach_found_[b][i];
+    }
+    if (reuse) {
+        choice_.assign(choice_.size(), {0, 0});
+        moving_.assign(moving_.size(), 0);
+        fresh_ = true;
+        return !pairs_.empty();
+    }
+    // Found anew: kReuseMargin farther than this tick needs.
+    pairs_.clear();
+    spans_.clear();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        for (float& r : reach_[b]) r += kReuseMargin;
+        whole[b] = {whole[b].lo - Vec3{kReuseMargin, kReuseMargin, kReuseMargin}, whole[b].hi + Vec3{kReuseMargin, kReuseMargin, kReuseMargin}};
+    }
+    std::vector<std::uint32_t> refit;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bool needed = false;
         for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
         for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(r, b);
-        if (!needed) continue;
+        if (needed) refit.push_back(std::uint32_t(b));
+    }
+    const auto fit = [&](std::size_t k) {
+        const std::size_t b = refit[k];
         const SoftBody& body = bodies[b];
         Surface& s = surfaces_[b];
         const std::vector<float>& reach = reach_[b];
@@ -280,7 +336,9 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         }
         if (s.tree.empty()) s.tree.build(s.boxes);
         else s.tree.refit(s.boxes);
-    }
+    };
+    if (refit.size() == 1) fit(0);
+    else if (refit.size() > 1) pool.run(refit.size(), fit);
     // Each particle's pairs with a body it can meet, its particles in chunks spread over the
     // threads, each chunk's pairs in a list of its own, joined in particle order afterwards: the
     // pairs (and so every contact and impulse) come in the same order at any thread count.
@@ -302,6 +360,51 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             else pool.run(chunks, run);
             for (std::size_t k = 0; k < chunks; ++k) pairs_.insert(pairs_.end(), chunk_pairs_[k].begin(), chunk_pairs_[k].end());
         }
+    }
+    // begin_substep's groups, one particle's pairs with one body each (its contacts are chosen
+    // among them), and its spans, whole groups of about kChunk pairs. Each group's choice is
+    // made anew in the tick's first substep.
+    groups_.clear();
+    spans_.assign(1, 0);
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        const Pair& p = pairs_[k];
+        if (k > 0 && p.a == pairs_[k - 1].a && p.p == pairs_[k - 1].p && p.b == pairs_[k - 1].b) continue;
+        if (k - (spans_.back() < groups_.size() ? groups_[spans_.back()] : k) >= kChunk) spans_.push_back(groups_.size());
+        groups_.push_back(k);
+    }
+    if (!groups_.empty()) spans_.push_back(groups_.size());
+    groups_.push_back(pairs_.size());
+    choice_.assign(groups_.size() - 1, {0, 0});
+    moving_.assign(groups_.size() - 1, 0);
+    fresh_ = true;
+    // Each group's corners, once each (its triangles share most), and the particles D reads
+    // (the groups' particles and corners), once each.
+    corners_.clear();
+    corners_begin_.assign(1, 0);
+    touched_.clear();
+    moved_.resize(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) moved_[b].assign(bodies[b].particle_count(), -1.0f);
+    const auto touch = [&](std::uint32_t b, std::uint32_t i) {
+        if (moved_[b][i] == 0.0f) return;
+        moved_[b][i] = 0.0f;
+        touched_.push_back({b, i});
+    };
+    for (std::size_t group = 0; group + 1 < groups_.size(); ++group) {
+        const Pair& first = pairs_[groups_[group]];
+        const std::vector<std::uint32_t>& triangles = surfaces_[first.b].triangles;
+        if (!triangles.empty()) {
+            touch(first.a, first.p);
+            const std::size_t from = corners_.size();
+            for (std::size_t k = groups_[group]; k < groups_[group + 1]; ++k) {
+                for (int j = 0; j < 3; ++j) {
+                    const std::uint32_t v = triangles[3 * pairs_[k].prim + std::uint32_t(j)];
+                    if (std::find(corners_.begin() + std::ptrdiff_t(from), corners_.end(), v) != corners_.end()) continue;
+                    corners_.push_back(v);
+                    touch(first.b, v);
+                }
+            }
+        }
+        corners_begin_.push_back(corners_.size());
     }
     // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
     // vertices and points along its edges, hull_feature), against the triangles whose boxes
@@ -347,54 +450,72 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             }
         }
     }
+    reusable_ = !rigid_meets && rigid_pairs_.empty();
+    meeting_found_ = std::move(meeting);
+    reach_found_ = reach_;
+    x_found_.resize(bodies.size());
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        x_found_[b].resize(bodies[b].particle_count());
+        for (std::size_t i = 0; i < bodies[b].particle_count(); ++i) x_found_[b][i] = bodies[b].x[i];
+    }
     return !pairs_.empty() || !rigid_pairs_.empty();
 }
 
-// The contact of one pair where the substep begins: the nearest point, its weights and normal,
-// Eq. 38's denominator and the closing speed. False when out of reach for the rest of the tick.
-bool SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const {
+// One pair where the substep begins: the nearest point's weights and the way from it to the
+// particle. False when out of reach for the rest of the tick, or when no impulse could move
+// either side (every particle it weighs fixed). All that choosing among a particle's pairs
+// needs; the rest only for the pairs chosen (make_contact).
+bool SoftContacts::nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const {
     const SoftBody& A = bodies[pair.a];
     const SoftBody& B = bodies[pair.b];
+    prim_points(pair, out.other);
+    const Vec3 p = A.x[pair.p];
+    const Vec3 x0 = B.x[out.other[0]], x1 = B.x[out.other[1]], x2 = B.x[out.other[2]];
+    const bool point = out.other[0] == out.other[1];
+    out.w = point ? std::array<float, 3>{1.0f, 0.0f, 0.0f} : nearest_on_triangle(p, x0, x1, x2);
+    out.away = p - (x0 * out.w[0] + x1 * out.w[1] + x2 * out.w[2]);
+    out.dist = length(out.away);
+    // Within reach of this tick only (the pair was found for the whole of it).
+    if (out.dist - pair.distance > pair.reach) return false;
+    if (point) out.w[1] = out.w[2] = 0.0f;
+    float inv = A.inv_mass[pair.p];
+    for (int k = 0; k < 3; ++k) inv += out.w[std::size_t(k)] * out.w[std::size_t(k)] * B.inv_mass[out.other[k]];
+    if (!(inv > 0.0f)) return false;
+    out.inv_mass_sum = inv;
+    // Which way the normal points (make_contact): on the surface itself, the face's.
+    out.way = out.dist > 1e-7f ? out.away : point ? Vec3{0.0f, 0.0f, 1.0f} : cross(x1 - x0, x2 - x0);
+    return true;
+}
+
+// The contact of a chosen pair: its weights and normal, Eq. 38's denominator and the closing speed.
+void SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const {
+    const SoftBody& A = bodies[pair.a];
+    const SoftBody& B = bodies[pair.b];
+    c = Active{};
     c.c.body_a = pair.a;
     c.c.particle = pair.p;
     c.c.body_b = pair.b;
-    prim_points(pair, c.c.other);
-    const Vec3 p = A.x[pair.p];
-    const Vec3 x0 = B.x[c.c.other[0]], x1 = B.x[c.c.other[1]], x2 = B.x[c.c.other[2]];
-    std::array<float, 3> w{1.0f, 0.0f, 0.0f};
-    if (c.c.other[0] != c.c.other[1]) w = nearest_on_triangle(p, x0, x1, x2);
-    const Vec3 q = x0 * w[0] + x1 * w[1] + x2 * w[2];
-    Vec3 n = p - q;
-    const float dist = length(n);
-    if (dist > 1e-7f) {
-        n = n / dist;
+    for (int k = 0; k < 3; ++k) {
+        c.c.other[k] = near.other[k];
+        c.c.weight[k] = near.w[std::size_t(k)];
+    }
+    Vec3 n = near.away;
+    if (near.dist > 1e-7f) {
+        n = n / near.dist;
     } else {
         // On the surface itself: the face's normal (the way the face is wound).
-        n = c.c.other[0] != c.c.other[1] ? cross(x1 - x0, x2 - x0) : Vec3{0.0f, 0.0f, 1.0f};
-        const float l = length(n);
-        n = l > 0.0f ? n / l : Vec3{0.0f, 0.0f, 1.0f};
+        const float l = length(near.way);
+        n = l > 0.0f ? near.way / l : Vec3{0.0f, 0.0f, 1.0f};
     }
-    const float gap = dist - pair.distance;
-    // Within reach of this tick only (the pair was found for the whole of it).
-    const float reach = reach_[pair.a][pair.p] + std::max({reach_[pair.b][c.c.other[0]], reach_[pair.b][c.c.other[1]], reach_[pair.b][c.c.other[2]]});
-    if (gap > reach) return false;
-    c.c.weight[0] = w[0];
-    c.c.weight[1] = w[1];
-    c.c.weight[2] = w[2];
-    if (c.c.other[0] == c.c.other[1]) c.c.weight[1] = c.c.weight[2] = 0.0f;
     c.c.normal = Vec3d(n);
-    c.c.separation = gap;
+    c.c.separation = near.dist - pair.distance;
     c.c.distance = pair.distance;
     // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
     // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
-    float inv = A.inv_mass[pair.p];
-    for (int k = 0; k < 3; ++k) inv += c.c.weight[k] * c.c.weight[k] * B.inv_mass[c.c.other[k]];
-    if (!(inv > 0.0f)) return false;
-    c.inv_mass_sum = inv;
+    c.inv_mass_sum = near.inv_mass_sum;
     Vec3 v_rel = A.v[pair.p];
     for (int k = 0; k < 3; ++k) v_rel -= B.v[c.c.other[k]] * c.c.weight[k];
     c.bounce = -dot(v_rel, n);
-    return true;
 }
 
 void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
@@ -458,50 +579,88 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
     // One contact per particle and surface: its nearest triangle (the pairs of one particle and
     // body come one after another), and the nearest on the other side of the particle if there
     // is one (a particle between two layers of a folded sheet). The other triangles within
-    // reach would only push along nearly the same normal, and cost the solver's passes. Found
-    // again every substep: a particle sliding fast crosses a small triangle in a tick.
-    // Each pair's contact on its own (in chunks over the threads), then the choice in pair order.
-    made_.resize(pairs_.size());
-    made_ok_.resize(pairs_.size());
-    const std::size_t chunks = (pairs_.size() + kChunk - 1) / kChunk;
-    const auto make = [&](std::size_t chunk) {
-        const std::size_t end = std::min(pairs_.size(), (chunk + 1) * kChunk);
-        for (std::size_t k = chunk * kChunk; k < end; ++k) {
-            made_[k] = Active{};
-            made_ok_[k] = make_contact(bodies, pairs_[k], made_[k]);
-        }
-    };
-    if (chunks == 1) make(0);
-    else if (chunks > 1) pool.run(chunks, make);
-    std::size_t group = 0;
-    std::uint32_t group_a = ~0u, group_p = ~0u, group_b = ~0u;
-    for (std::uint32_t k = 0; k < pairs_.size(); ++k) {
-        const Pair& pair = pairs_[k];
-        if (!made_ok_[k]) continue;
-        const Active& c = made_[k];
-        if (surfaces_[pair.b].triangles.empty()) {  // a point cloud's balls: every one it touches
-            active_.push_back(c);
-            continue;
-        }
-        if (pair.a != group_a || pair.p != group_p || pair.b != group_b) {
-            group = active_.size();
-            group_a = pair.a;
-            group_p = pair.p;
-            group_b = pair.b;
-        }
-        if (active_.size() == group) {
-            active_.push_back(c);
-            continue;
-        }
-        const bool opposite = dot(c.c.normal, active_[group].c.normal) < 0.0;
-        if (!opposite) {
-            if (c.c.separation < active_[group].c.separation) active_[group] = c;
-        } else if (active_.size() == group + 1) {
-            active_.push_back(c);
-        } else if (c.c.separation < active_[group + 1].c.separation) {
-            active_[group + 1] = c;
+    // reach would only push along nearly the same normal, and cost the solver's passes.
+    // Which triangle is nearest is chosen where the tick begins, and again in every substep
+    // for a particle that has moved against the other surface since then: a particle sliding
+    // fast crosses a small triangle in a tick. Moved by how much: each pair's distance changes
+    // by at most D = |p - p_0| + max |x_i - x_i,0| (the particle's motion and the farthest
+    // corner's among its triangles: the nearest point's weights on the moved corners are a
+    // point at most that far from where it was), so while D <= kKeepChoice d the triangle
+    // chosen is at most 2 D farther than the nearest, a gap 2% of the contact distance d off
+    // at most; past that, the group is chosen anew every substep until the tick ends. The
+    // chosen triangles' nearest points and normals are found anew every substep either way.
+    // A body resting on another keeps its choice (its particles move micrometres in a tick)
+    // and pays for one nearest point a contact, not one for every triangle in reach.
+    // Each of find's spans (whole groups) on the pool's threads, its contacts into a list of
+    // its own; the lists joined in span order: the same contacts in the same order at any
+    // thread count.
+    // Each touched particle where the tick's first substep began, then how far it has gone
+    // since (squared).
+    if (fresh_) {
+        x_ref_.resize(touched_.size());
+        for (std::size_t k = 0; k < touched_.size(); ++k) x_ref_[k] = bodies[touched_[k][0]].x[touched_[k][1]];
+    } else {
+        for (std::size_t k = 0; k < touched_.size(); ++k) {
+            const auto [b, i] = touched_[k];
+            const Vec3 d = bodies[b].x[i] - x_ref_[k];
+            moved_[b][i] = dot(d, d);
         }
     }
+    const std::size_t spans = spans_.empty() ? 0 : spans_.size() - 1;
+    if (chunk_active_.size() < spans) chunk_active_.resize(spans);
+    const auto make = [&](std::size_t span) {
+        std::vector<Active>& out = chunk_active_[span];
+        out.clear();
+        Near near[2], next;
+        for (std::size_t g = spans_[span]; g < spans_[span + 1]; ++g) {
+            const std::size_t begin = groups_[g], end = groups_[g + 1];
+            const Pair& first = pairs_[begin];
+            const bool faces = !surfaces_[first.b].triangles.empty();
+            if (faces && !fresh_ && !moving_[g]) {
+                // D, against kKeepChoice d.
+                const std::vector<float>& moved_b = moved_[first.b];
+                float corner = 0.0f;
+                for (std::size_t k = corners_begin_[g]; k < corners_begin_[g + 1]; ++k) corner = std::max(corner, moved_b[corners_[k]]);
+                const float moved = std::sqrt(moved_[first.a][first.p]) + std::sqrt(corner);
+                if (moved <= kKeepChoice * first.distance) {
+                    for (const std::uint32_t k : choice_[g]) {
+                        if (k && nearest(bodies, pairs_[k - 1], next)) make_contact(bodies, pairs_[k - 1], next, out.emplace_back());
+                    }
+                    continue;
+                }
+                moving_[g] = 1;
+            }
+            // The group's choice: the nearest (same), and the nearest across it (across).
+            std::uint32_t same = 0, across = 0;
+            for (std::size_t k = begin; k < end; ++k) {
+                const Pair& pair = pairs_[k];
+                if (!nearest(bodies, pair, next)) continue;
+                if (!faces) {  // a point cloud's balls: every one it touches
+                    make_contact(bodies, pair, next, out.emplace_back());
+                    continue;
+                }
+                if (!same) {
+                    same = std::uint32_t(k + 1);
+                    near[0] = next;
+                } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
+                    if (next.dist < near[0].dist) {
+                        same = std::uint32_t(k + 1);
+                        near[0] = next;
+                    }
+                } else if (!across || next.dist < near[1].dist) {
+                    across = std::uint32_t(k + 1);
+                    near[1] = next;
+                }
+            }
+            if (same) make_contact(bodies, pairs_[same - 1], near[0], out.emplace_back());
+            if (across) make_contact(bodies, pairs_[across - 1], near[1], out.emplace_back());
+            choice_[g] = {same, across};
+        }
+    };
+    if (spans == 1) make(0);
+    else if (spans > 1) pool.run(spans, make);
+    fresh_ = false;
+    for (std::size_t k = 0; k < spans; ++k) active_.insert(active_.end(), chunk_active_[k].begin(), chunk_active_[k].end());
 }
 
 void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
@@ -629,7 +788,12 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         c.friction = {};
     }
     for (int pass = 0; pass < kPasses; ++pass) {
-        float largest = 0.0f;  // the largest velocity change of the pass
+        // Where the pass starts, to say how far it moved each velocity (below).
+        pass_v_.assign(local_v_.begin(), local_v_.end());
+        if (!rigid_active_.empty()) {
+            pass_dP_.assign(dP_.begin(), dP_.end());
+            pass_dL_.assign(dL_.begin(), dL_.end());
+        }
         for (RigidActive& c : rigid_active_) {
             const RigidBody& body = rigid[c.rigid];
             const double k_n = rigid_denominator(c, c.n);
@@ -652,30 +816,47 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             const Vec3d df = total - c.friction;
             c.friction = total;
             if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
-            largest = std::max(largest, float((std::abs(dl) + length(df)) * k_n));
         }
         for (Active& c : active_) {
             const Vec3 n = to_float(c.c.normal);
             // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
-            const float v_n = dot(relative(c), n);
+            Vec3 v = relative(c);
+            const float v_n = dot(v, n);
             const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
             const float dl = lambda - float(c.c.normal_impulse);
             c.c.normal_impulse = lambda;
-            if (dl != 0.0f) apply(c, n * dl);
             // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
             // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
-            const Vec3 v = relative(c);
+            // The slide after the normal impulse: an impulse J on the contact (J on the particle,
+            // -w_i J on the corners, four different particles) changes v_rel by J times Eq. 38's
+            // denominator, so v_rel follows without gathering the velocities again, and both
+            // impulses go out together.
+            v += n * (dl * c.inv_mass_sum);
             const Vec3 v_t = v - n * dot(v, n);
             Vec3 total = c.friction - v_t / c.inv_mass_sum;
             const float size = length(total);
             if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
-            const Vec3 df = total - c.friction;
+            const Vec3 J = n * dl + (total - c.friction);
             c.friction = total;
-            if (df.x != 0.0f || df.y != 0.0f || df.z != 0.0f) apply(c, df);
-            largest = std::max(largest, (std::abs(dl) + length(df)) * c.inv_mass_sum);
+            if (J.x != 0.0f || J.y != 0.0f || J.z != 0.0f) apply(c, J);
         }
-        // Converged: no contact's velocity moved by more than kSettled in the whole pass.
-        if (largest < kSettled) break;
+        // Converged: the pass moved no particle's velocity, and no rigid body's at its farthest
+        // point, by more than kSettled. Measured on the velocities, not on each contact's
+        // impulse: where two contacts hold the same particles (a particle of each body over the
+        // other's triangle, at the same spot), passes go on shifting the load from one to the
+        // other by as much as they like while no velocity moves, and the contacts' impulses
+        // would never say the passes are done.
+        float moved = 0.0f;
+        for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
+            const Vec3 d = local_v_[slot] - pass_v_[slot];
+            moved = std::max(moved, dot(d, d));
+        }
+        moved = std::sqrt(moved);
+        for (std::size_t r = 0; r < pass_dP_.size() && !rigid_active_.empty(); ++r) {
+            const Vec3d dv = (dP_[r] - pass_dP_[r]) * rigid[r].inv_mass, dw = motions_[r].J_inv * (dL_[r] - pass_dL_[r]);
+            moved = std::max(moved, float(length(dv) + length(dw) * rigid[r].bounding_radius));
+        }
+        if (moved < kSettled) break;
     }
     // A rigid body's momenta take the impulses; its centre and turn follow by h times the
     // velocity and spin they changed (dv = dP / m, dw = J_world^-1 dL).

@@ -7,13 +7,14 @@
 // triangle, plus the particle's radius; a point cloud's particles are balls of half their
 // usual spacing). Speculative, as the rigid contacts are: the pairs are found once a tick
 // within how far their particles can move in it (a bounding-volume tree per body, refit every
-// tick: bvh.h), and each substep
+// tick: bvh.h; or the last search's pairs again, while they cover this tick), and each substep
 //   begin_substep  the nearest point and its normal where the substep begins (before the
 //                  integrator): n points from the surface toward the particle, and stays
 //                  fixed for the substep, so that a particle that would cross the surface in
 //                  this step is still pushed back the way it came. Of each particle's
 //                  triangles in reach it keeps the nearest (and the nearest across it, between
-//                  two layers of a sheet)
+//                  two layers of a sheet): chosen where the tick begins, and anew every substep
+//                  once the particle or those triangles have moved more than 1% of d since
 //   solve          after the integrator's free step: impulses along n (Eq. 38 with the
 //                  particle as body 1, no rotation term; body 2 the surface point, whose
 //                  inverse mass is sum w_i^2 / m_i over its three particles) so that the gap
@@ -66,6 +67,7 @@ public:
     // faces its particles' radius; the trees. Call whenever the bodies are built.
     void build(const std::vector<SoftBody>& bodies);
     // The pairs within reach over the tick of dt, found where the bodies are as it begins
+    // (or the last search's, when it reached far enough to cover this tick too)
     // (call before body.x_tick_prev is overwritten: the last tick's motion says how far the
     // particles may go in this one). Returns whether there are any.
     // `rigid`, `state`: the rigid bodies and Listing 10's flat state as the tick begins.
@@ -74,8 +76,8 @@ public:
     bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
               const Params& world, double dt, ThreadPool& pool);
     bool empty() const { return pairs_.empty(); }
-    // Before the integrator moves the particles: each pair's nearest point and normal.
-    // (Each pair's nearest point on the pool's threads; which are kept, in pair order after.)
+    // Before the integrator moves the particles: each kept pair's nearest point and normal.
+    // (Each particle's pairs on the pool's threads, in spans of whole particles, joined in order.)
     void begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
                        ThreadPool& pool);
     // After the integrator's free step of h (and the rigid contacts): the impulses, on the
@@ -118,7 +120,16 @@ private:
     void prim_points(const Pair& pair, std::uint32_t out[3]) const;
     void find_particle(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, const Box3f& whole_b,
                        std::vector<Pair>& out) const;
-    bool make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, Active& c) const;
+    struct Near {
+        std::uint32_t other[3];    // the triangle's corners (a particle three times)
+        std::array<float, 3> w;    // the nearest point's weights
+        Vec3 away;                 // from the nearest point to the particle
+        float dist = 0.0f;         // |away|
+        Vec3 way;                  // which way the normal points: away, or the face's on the face
+        float inv_mass_sum = 0.0f;
+    };
+    bool nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const;
+    void make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const;
 
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
     struct RigidPair {
@@ -152,8 +163,23 @@ private:
     std::vector<Pair> pairs_;
     std::vector<Active> active_;
     std::vector<std::vector<Pair>> chunk_pairs_;  // find's lists, one per chunk of particles
-    std::vector<Active> made_;                    // begin_substep: each pair's contact
-    std::vector<std::uint8_t> made_ok_;           // and whether it is within reach
+    std::vector<std::size_t> groups_;             // where each particle's pairs with a body begin in pairs_ (and the end)
+    std::vector<std::size_t> spans_;              // begin_substep's spans of groups_: [spans_[k], spans_[k + 1])
+    std::vector<std::array<std::uint32_t, 2>> choice_;  // per group: its nearest pair and the nearest across, + 1 (0: none)
+    std::vector<std::uint8_t> moving_;            // per group: chosen anew every substep for the rest of the tick
+    std::vector<std::uint32_t> corners_;          // per group: its triangles' corners, once each,
+    std::vector<std::size_t> corners_begin_;      // from corners_[corners_begin_[g]] to corners_[corners_begin_[g + 1]]
+    std::vector<std::array<std::uint32_t, 2>> touched_;  // the particles the groups' D reads: body, particle
+    std::vector<Vec3> x_ref_;                     // each touched particle where the tick's first substep began
+    std::vector<std::vector<float>> moved_;       // per body and particle: how far it has gone since, squared
+    bool fresh_ = false;                          // find has run, no substep has begun since
+    // find's last search: whether its pairs can serve again, which bodies met, each particle's
+    // reach and position then.
+    bool reusable_ = false;
+    std::vector<std::uint8_t> meeting_found_;
+    std::vector<std::vector<float>> reach_found_;
+    std::vector<std::vector<Vec3>> x_found_;
+    std::vector<std::vector<Active>> chunk_active_;  // begin_substep's contacts, one list per span
     std::vector<SoftContact> touching_;
     std::vector<std::vector<float>> reach_;   // per body, per particle: how far it can go in the tick
     // solve's compact copy: per body and particle its slot (kNoSlot: none); per slot the
@@ -162,6 +188,8 @@ private:
     static constexpr std::uint32_t kNoSlot = ~0u;
     std::vector<std::vector<std::uint32_t>> slot_;
     std::vector<Vec3> local_v_, local_dv_;
+    std::vector<Vec3> pass_v_;              // local_v_ as a pass began
+    std::vector<Vec3d> pass_dP_, pass_dL_;  // dP_, dL_ as a pass began
     std::vector<float> local_im_;
     std::vector<std::array<std::uint32_t, 2>> local_of_;
     std::vector<std::uint8_t> local_pushed_;
