@@ -224,16 +224,16 @@ private:
     void restitute(bool after_positions);
     void forget_bounced();
     double work(const Body& body, bool shown) const;
-    void colour();
+    void slabs();
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
     // f(i) for every i below count, on the pool's threads when there are enough: only for items
     // that write nothing another item reads (each body's own state, each manifold's own points).
     template <class F>
     void parallel(std::size_t count, std::size_t grain, const F& f);
-    // f(manifold) for every manifold, colour after colour, a colour's manifolds on every thread.
+    // f(manifold) for every manifold: the slabs' at once, each slab's in order, then those across.
     template <class F>
-    void each_coloured(const F& f);
+    void each_in_slabs(const F& f);
 
     ContactSettings settings_;
     double h_ = 0.0;
@@ -244,11 +244,11 @@ private:
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
     ContactEnergy energy_;
-    // The manifolds by colour (colour()): colour c is colour_order_[colour_start_[c]] up to
-    // colour_start_[c + 1], no two of them sharing a moving body; the last, the ones no colour
-    // had room for, is solved in order on one thread.
-    std::vector<std::uint32_t> colour_order_;
-    std::vector<std::uint32_t> colour_start_;
+    // The manifolds by slab (slabs()): slab c is slab_order_[slab_start_[c]] up to
+    // slab_start_[c + 1], no two slabs sharing a moving body; the last group, the manifolds
+    // across two slabs, is solved after them in order on one thread.
+    std::vector<std::uint32_t> slab_order_;
+    std::vector<std::uint32_t> slab_start_;
     ThreadPool* pool_ = nullptr;
 };
 

@@ -32,6 +32,7 @@ struct Islands {
 void World::reset_sleep() {
     sleep_.rest_time.assign(rigid_.size(), 0.0);
     sleep_.island.assign(rigid_.size(), kAwake);
+    sleep_.deepest.assign(rigid_.size(), 0.0);
     sleep_.contacts.clear();
     sleep_.sleeping = 0;
     asleep_.assign(rigid_.size(), 0);
@@ -91,12 +92,19 @@ void World::update_sleep() {
     const std::size_t n = rigid_.size();
     if (n == 0) return;
     const double dt = params_.dt;
-    // Bodies still being pushed out of an overlap deeper than a loaded contact stands.
-    std::vector<std::uint8_t> overlapping(n, 0);
+    // Bodies still being pushed out of an overlap deeper than a loaded contact stands: their
+    // deepest contact deeper than kSleepDepth and shallower than a tick ago by kSleepDepthShrink.
+    std::vector<double> deepest(n, 0.0);
     for (const RigidContact& c : contacts_) {
-        if (c.soft >= 0 || !(c.depth > kSleepDepth)) continue;
-        overlapping[c.a] = 1;
-        if (c.b >= 0) overlapping[std::size_t(c.b)] = 1;
+        if (c.soft >= 0) continue;
+        deepest[c.a] = std::max(deepest[c.a], c.depth);
+        if (c.b >= 0) deepest[std::size_t(c.b)] = std::max(deepest[std::size_t(c.b)], c.depth);
+    }
+    std::vector<std::uint8_t> overlapping(n, 0);
+    for (std::size_t b = 0; b < n; ++b) {
+        if (asleep_[b]) continue;
+        overlapping[b] = deepest[b] > kSleepDepth && deepest[b] < sleep_.deepest[b] - kSleepDepthShrink ? 1 : 0;
+        sleep_.deepest[b] = deepest[b];
     }
     // Each body's own rest time, on every thread.
     for_chunks(pool_.get(), n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {

@@ -6,9 +6,10 @@
 // nothing: two boxes resting side by side on the floor are two islands.
 //
 // A body is at rest while every point of it is slower than kSleepSpeed: |v| + |w| r < kSleepSpeed,
-// r its bounding radius (the bench's measure of "moving", app/soundness.h), and none of its
-// contacts is deeper than kSleepDepth. Its rest time counts up by dt each tick it is, and falls
-// back to 0 the tick it is not.
+// r its bounding radius (the bench's measure of "moving", app/soundness.h), and it is not being
+// pushed out of an overlap: its deepest contact is not both deeper than kSleepDepth and
+// shallower than a tick before by kSleepDepthShrink. Its rest time counts up by dt each tick it
+// is, and falls back to 0 the tick it is not.
 //
 // An island falls asleep at the end of a tick when
 //   - every body in it has been at rest for kTimeToSleep,
@@ -48,6 +49,11 @@ inline constexpr double kSleepSpeed = 0.05;
 // boxes stand up to 1 to 2 mm deep (measured: with 1 mm here, 56 of the 100 boxes of the pile
 // in tests/physics/sleep_test.cpp sleep after 10 s; with 2 mm, over 90).
 inline constexpr double kSleepDepth = 2e-3;
+// m a tick: an overlap coming out slower than this (5 mm/s) is not coming out: a box wedged
+// 2.09 mm into another by its neighbours stood there, its depth the same to the micrometre tick
+// after tick, and kept its pile awake for ever. It sleeps as deep as it stood awake. (The push
+// apart takes a 2 mm overlap out at about 2 cm/s: ContactSettings.)
+inline constexpr double kSleepDepthShrink = 1e-4;
 // s: how long every body of an island is at rest before it sleeps.
 inline constexpr double kTimeToSleep = 0.5;
 

@@ -170,6 +170,7 @@ void World::restore(const WorldSnapshot& s, bool more_bodies) {
     sleep_ = s.sleep;
     sleep_.rest_time.resize(rigid_.size(), 0.0);
     sleep_.island.resize(rigid_.size(), kAwake);
+    sleep_.deepest.resize(rigid_.size(), 0.0);
     for (std::size_t b = 0; b < rigid_.size(); ++b) asleep_[b] = sleep_.island[b] != kAwake ? 1 : 0;
 }
 

@@ -76,10 +76,11 @@ TEST(Determinism, ChangingThreadsMidRunKeepsTheHash) {
     EXPECT_EQ(a.state_hash(), hash_after(1, 150));
 }
 
-// Rigid bodies: the contact solver's colours, each body's free step and the narrow phase share
-// the threads (README, "Contacts on both cores"). 400 boxes and balls piling into their bin for
-// 1.5 s, hundreds of manifolds: colours of dozens, past what one thread keeps to itself
-// (kManifoldGrain), so every thread count splits them differently; and a pyramid at rest.
+// Rigid bodies: the contact solver's slabs, each body's free step, the broad phase and the
+// narrow phase share the threads (README, "Contacts on both cores"). 600 boxes and balls piling
+// into their bin for 1.5 s, over a thousand contact points: hundreds of manifolds, past what one
+// thread keeps to itself (kManifoldGrain a slab), so every thread count splits the work
+// differently; and a pyramid at rest.
 std::uint64_t rigid_hash_after(const char* scene, int threads, int ticks, std::size_t* contacts = nullptr) {
     World world(make_world_def(generated_scene(scene)), WorldOptions{threads});
     world.run(std::uint64_t(ticks));
@@ -90,10 +91,10 @@ std::uint64_t rigid_hash_after(const char* scene, int threads, int ticks, std::s
 
 TEST(Determinism, RigidPileAndPyramidSameHashAtOneTwoAndThreeThreads) {
     std::size_t contacts = 0;
-    const std::uint64_t pile = rigid_hash_after("boxes:400", 1, 75, &contacts);
-    EXPECT_GT(contacts, 600u);  // the pile is busy: many manifolds to each colour
-    EXPECT_EQ(pile, rigid_hash_after("boxes:400", 2, 75));
-    EXPECT_EQ(pile, rigid_hash_after("boxes:400", 3, 75));
+    const std::uint64_t pile = rigid_hash_after("boxes:600", 1, 75, &contacts);
+    EXPECT_GT(contacts, 1000u);  // the pile is busy: many manifolds in each slab
+    EXPECT_EQ(pile, rigid_hash_after("boxes:600", 2, 75));
+    EXPECT_EQ(pile, rigid_hash_after("boxes:600", 3, 75));
     const std::uint64_t pyramid = rigid_hash_after("pyramid:10", 1, 20);
     EXPECT_EQ(pyramid, rigid_hash_after("pyramid:10", 2, 20));
     EXPECT_EQ(pyramid, rigid_hash_after("pyramid:10", 3, 20));

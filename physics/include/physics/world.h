@@ -97,6 +97,7 @@ inline constexpr std::uint32_t kAwake = 0xFFFFFFFFu;
 struct SleepState {
     std::vector<double> rest_time;        // per rigid body: s its every point has been slower than kSleepSpeed
     std::vector<std::uint32_t> island;    // per rigid body: kAwake, or the island it sleeps in (its first body's index)
+    std::vector<double> deepest;          // per rigid body: its deepest contact with another as the last tick ended, m
     std::vector<RigidContact> contacts;   // the sleeping islands' contacts as they fell asleep: their warm start on waking
     std::size_t sleeping = 0;             // bodies asleep
 };
