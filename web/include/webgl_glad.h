@@ -1,4 +1,4 @@
-// The browser build's <glad/gl.h>. In the browser GL is WebGL2, that is OpenGL ES 3.0, and
+// The browser build's <glad/gl.h> (web/CMakeLists.txt copies it there at configure time). In the browser GL is WebGL2, that is OpenGL ES 3.0, and
 // emscripten links its functions directly: there is nothing to load. This header gives the
 // renderer and the UI backend ES 3.0's declarations under glad's names, so they compile
 // unchanged (the native build generates the real glad at build time).
