@@ -49,7 +49,7 @@ inline render::BodyView soft_body_view(const SoftBody& body, float alpha = 1.0f,
     if (body.force.size() == body.particle_count()) view.forces = span_of(body.force);
     view.rest_positions = span_of(body.rest);
     view.inverse_masses = {body.inv_mass.data(), body.inv_mass.size()};
-    if (body.params.color) view.color = to_glm(*body.params.color);
+    if (body.def.color) view.color = to_glm(*body.def.color);
     else if (index > 0) view.color = soft_body_color(index);
     return view;
 }
@@ -107,13 +107,13 @@ inline void world_view(const World& world, float alpha, render::Frame& frame) {
 }
 
 // How the renderer's ground matches the physics' ground.
-inline void match_ground(const Params& params, render::Appearance& look) {
-    look.ground = params.ground;
-    look.ground_height = params.ground_height;
+inline void match_ground(const WorldSettings& settings, render::Appearance& look) {
+    look.ground = settings.ground;
+    look.ground_height = settings.ground_height;
 }
 
-// A sphere holding every body as it is now: the first soft body's centre of mass and reach
-// when it is alone (as the demo has always framed it), else the bounding spheres of all.
+// A sphere holding every body as it is now: a soft body's centre of mass and reach when it is
+// alone (as the demo has always framed it), else the bounding spheres of all.
 struct WorldBounds {
     glm::vec3 centre{0.0f};
     float radius = 0.0f;
@@ -121,8 +121,9 @@ struct WorldBounds {
 inline WorldBounds world_bounds(const World& world) {
     WorldBounds bounds;
     if (world.soft_body_count() == 1 && world.rigid_body_count() == 0) {
-        const Vec3 c = world.center_of_mass();
-        for (std::size_t i = 0; i < world.particle_count(); ++i) bounds.radius = std::max(bounds.radius, length(world.positions()[i] - c));
+        const Vec3 c = world.center_of_mass(0);
+        const Vec3Array& x = world.soft_body(0).x;
+        for (std::size_t i = 0; i < x.size(); ++i) bounds.radius = std::max(bounds.radius, length(x[i] - c));
         bounds.centre = {c.x, c.y, c.z};
         return bounds;
     }

@@ -123,7 +123,7 @@ void SceneOptions::add_to(CLI::App& app) {
         ->type_name("FILE");
     app.add_option("--mesh", mesh, "mesh (.obj, .off or cloud:N), sized to 1 m and stood up (default: the scene's)")
         ->type_name("FILE");
-    app.add_option("--set", sets, "a key over the scene's (NAME.KEY=VALUE: a named body's); repeatable (default: none)")
+    app.add_option("--set", sets, "a key over the scene's (NAME.KEY=VALUE: a named body's or spring's; softbody keys lists them); repeatable (default: none)")
         ->type_name("KEY=VALUE")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->allow_extra_args(false)
@@ -138,25 +138,25 @@ Scene SceneOptions::resolve() const {
     if (!scene.empty()) resolved = load_scene(scene);
     else if (mesh.empty()) resolved = load_scene(default_scene_path());
     if (!mesh.empty()) {
-        // A mesh brought on the command line: sized and stood up automatically (the scene's
-        // keys were for its own mesh); --set scale, up_axis or rotation overrides.
-        resolved.params.mesh = mesh;
-        fit_brought_mesh(resolved.params);
+        // A mesh brought on the command line: every soft body's (or, in a scene without one, a
+        // new body's), sized and stood up automatically (the scene's keys were for its own
+        // mesh); --set scale, up_axis or rotation overrides.
+        set_scene_key(resolved, "mesh", mesh);
+        for (SoftBodyDef& body : resolved.soft_bodies) fit_brought_mesh(body);
     }
     for (const std::string& assignment : sets) {
         const auto eq = assignment.find('=');
         set_scene_key(resolved, assignment.substr(0, eq), assignment.substr(eq + 1));
     }
     if (resolved.empty()) {
-        throw InputError("nothing to simulate: give --mesh FILE, or a scene file with a \"mesh\", \"soft_bodies\" or "
-                         "\"rigid_bodies\"");
+        throw InputError("nothing to simulate: give --mesh FILE, or a scene file with \"soft_bodies\" or \"rigid_bodies\"");
     }
     return resolved;
 }
 
-std::string SceneOptions::name(const Scene& resolved) const {
+std::string SceneOptions::name() const {
     if (!scene.empty()) return std::filesystem::path(scene).stem().string();
-    if (!mesh.empty()) return std::filesystem::path(resolved.params.mesh).stem().string();
+    if (!mesh.empty()) return std::filesystem::path(mesh).stem().string();
     return "default";
 }
 

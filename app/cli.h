@@ -10,7 +10,6 @@
 #include <string_view>
 #include <vector>
 
-#include "physics/params.h"
 #include "physics/scene_io.h"
 
 namespace CLI {
@@ -65,7 +64,7 @@ struct SceneOptions {
     // Builds the scene: the default scene when neither --scene nor --mesh is given.
     Scene resolve() const;
     // Name for output files: the scene's file stem, else the mesh's.
-    std::string name(const Scene& scene) const;
+    std::string name() const;
 };
 
 // Folder of the bundled assets (meshes and scenes), fixed at build time.

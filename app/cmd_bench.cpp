@@ -260,8 +260,8 @@ Measurement measure_scene(Kernel kernel, const std::function<Scene()>& make, int
     return in_child<Measurement>([&]() {
         Measurement m;
         const Scene scene = make();
-        World world(make_world_def(scene), WorldOptions{threads, kernel == Kernel::Reference});
-        const double n = double(world.soft_body_count() ? world.particle_count() : 0);
+        World world(scene, WorldOptions{threads, kernel == Kernel::Reference});
+        const double n = double(world.soft_body_count() ? world.soft_body(0).particle_count() : 0);
         m.substeps = world.substeps_in_use();
         if (n > 0) {
             const Stability s = world.stability();
@@ -271,12 +271,12 @@ Measurement measure_scene(Kernel kernel, const std::function<Scene()>& make, int
         if (kernel == Kernel::Baseline) {
             // The scene's soft body where the World starts it, at the substeps the World picked,
             // so the rows compare like with like.
-            const Params& params = scene.params;
-            const Vec3Array& x = world.positions();
+            const SoftBodyDef& keys = scene.soft_bodies.front();
+            const Vec3Array& x = world.soft_body(0).x;
             std::vector<Vec3> positions(x.size());
             for (std::size_t i = 0; i < x.size(); ++i) positions[i] = x[i];
-            baseline::SoftBody body(positions, params.stiffness, params.damping, params.particle_mass);
-            const float h = params.dt / float(m.substeps);
+            baseline::SoftBody body(positions, keys.stiffness, keys.damping, keys.particle_mass);
+            const float h = scene.settings.dt / float(m.substeps);
             const int substeps = m.substeps;
             time_ticks(
                 m, [&] { for (int step = 0; step < substeps; ++step) body.StepSimulation(h); }, [&] { return body.finite(); },
@@ -321,15 +321,15 @@ std::string cloud(std::size_t n) { return "cloud:" + std::to_string(n); }
 Scene two_cubes(bool touching) {
     Scene scene;
     for (int k = 0; k < 2; ++k) {
-        SoftBodyScene body;
+        SoftBodyDef body;
         body.name = k == 0 ? "lower" : "upper";
-        body.params.mesh = "cube:22";
-        body.params.scale = 0.6f;
-        body.params.max_particles = 0;
-        body.params.stiffness = 2.0f;  // soft enough to sag onto the lower cube; few substeps (7)
-        body.params.damping = 0.005f;
-        body.params.particle_mass = 0.05f;
-        body.params.position = touching ? Vec3{0.0f, 0.0f, 0.3f + 0.61f * float(k)} : Vec3{-0.5f + 1.0f * float(k), 0.0f, 0.3f};
+        body.mesh = "cube:22";
+        body.scale = 0.6f;
+        body.max_particles = 0;
+        body.stiffness = 2.0f;  // soft enough to sag onto the lower cube; few substeps (7)
+        body.damping = 0.005f;
+        body.particle_mass = 0.05f;
+        body.position = touching ? Vec3{0.0f, 0.0f, 0.3f + 0.61f * float(k)} : Vec3{-0.5f + 1.0f * float(k), 0.0f, 0.3f};
         scene.soft_bodies.push_back(body);
     }
     return scene;
@@ -513,9 +513,9 @@ ScaleRun measure_scale(const std::string& scene_name, int threads, double second
     return in_child<ScaleRun>([&]() {
         ScaleRun r;
         const Scene scene = load_scene(scene_name);
-        World world(make_world_def(scene), WorldOptions{threads, false});
+        World world(scene, WorldOptions{threads, false});
         r.threads = world.threads();
-        r.ticks = std::max(1, int(std::lround(seconds / double(world.params().dt))));
+        r.ticks = std::max(1, int(std::lround(seconds / double(world.settings().dt))));
         Clock::duration spent{};
         int done = 0;
         for (; done < r.ticks && world.status() == Status::Ok; ++done) {
@@ -524,7 +524,7 @@ ScaleRun measure_scale(const std::string& scene_name, int threads, double second
             spent += Clock::now() - t0;
         }
         r.ms_per_tick = std::chrono::duration<double, std::milli>(spent).count() / std::max(1, done);
-        r.seconds = std::round(double(done) * double(world.params().dt) * 1e6) / 1e6;  // 0.2, not float's 0.19999999
+        r.seconds = std::round(double(done) * double(world.settings().dt) * 1e6) / 1e6;  // 0.2, not float's 0.19999999
         if (world.status() != Status::Ok) {
             r.diverged = 1;
             std::snprintf(r.note, sizeof r.note, "%s", world.divergence().c_str());
@@ -536,7 +536,7 @@ ScaleRun measure_scale(const std::string& scene_name, int threads, double second
             defs.push_back(world.rigid_body(i));
             now.push_back({m.x, m.R, m.v, m.omega, lowest_point(world.rigid_body(i), m.x, m.R), world.rigid_asleep(i)});
         }
-        const Params& p = world.params();
+        const WorldSettings& p = world.settings();
         const Soundness s = soundness(defs, now, p.ground ? std::optional<double>(p.ground_height) : std::nullopt,
                                       is_pyramid(scene_name));
         r.bodies = s.bodies;
@@ -930,8 +930,9 @@ int bench_command(int argc, char** argv) {
         if (scene.rigid_bodies.empty()) throw UsageError("--scale-scenes: " + name + " has no rigid bodies");
     }
 
-    const Params defaults = load_scene(cloud(2)).params;  // what a cloud:N scene runs with: Listing 8's constants
-    const double dt = defaults.dt;
+    const Scene cloud_scene = load_scene(cloud(2));  // what a cloud:N scene runs with: Listing 8's constants
+    const SoftBodyDef& defaults = cloud_scene.soft_bodies.front();
+    const double dt = cloud_scene.settings.dt;
     const std::string fast_name = std::string("fast (") + PairForceKernel::name(PairForceKernel::best_variant()) + ")";
     const auto bench_start = Clock::now();
     std::ostream& log = json ? std::cerr : std::cout;  // progress goes to stderr with --json
@@ -1041,8 +1042,8 @@ int bench_command(int argc, char** argv) {
             std::size_t n = 0;
             try {
                 const Scene scene = load_scene(file);
-                if (scene.params.mesh.empty() || !scene.rigid_bodies.empty()) continue;  // not a mesh on its own
-                n = World(make_world_def(scene)).particle_count();
+                if (scene.soft_bodies.size() != 1 || !scene.rigid_bodies.empty()) continue;  // not a mesh on its own
+                n = World(scene).soft_body(0).particle_count();
             } catch (const std::exception& e) {
                 skipped.push_back(name + ": " + e.what());
                 continue;

@@ -162,13 +162,16 @@ std::string hex(std::uint64_t value) {
 }
 
 // The sphere to keep in view: the bodies now, and where they will land on the floor below.
-void frame_body(const World& world, const Params& params, float aspect, render::Camera& camera, float zoom) {
+void frame_body(const World& world, float aspect, render::Camera& camera, float zoom) {
+    const WorldSettings& params = world.settings();
     const WorldBounds bounds = world_bounds(world);
     const glm::vec3 c = bounds.centre;
     const float r = std::max(bounds.radius, 1e-3f);
     glm::vec3 centre = c;
     float radius = r;
-    if (!params.pinned.empty()) {
+    bool pinned = false;
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) pinned = pinned || !world.soft_body(b).def.pinned.empty();
+    if (pinned) {
         // A pinned body hangs: room below it for the sag, not the whole way to the floor.
         centre.z -= 0.4f * r;
         radius = 1.4f * r;
@@ -327,10 +330,10 @@ int render_command(int argc, char** argv) {
 
     // Inputs first (cheap, and the user's most likely mistakes), then the output folder, then GL.
     const Scene resolved = scene.resolve();
-    const Params& params = resolved.params;
-    World world(make_world_def(resolved), WorldOptions{threads, false});
+    const WorldSettings& params = resolved.settings;
+    World world(resolved, WorldOptions{threads, false});
     for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
-    const std::string name = scene.name(resolved);
+    const std::string name = scene.name();
     for (std::size_t i = 1; i < times.size() && sequence_frames == 0; ++i) {
         if (time_label(times[i]) == time_label(times[i - 1])) {
             throw UsageError("--at: " + std::to_string(times[i - 1]) + " and " + std::to_string(times[i]) +
@@ -364,7 +367,7 @@ int render_command(int argc, char** argv) {
     match_ground(params, frame.appearance);
     if (hide_ground) frame.appearance.ground = false;  // drawn without it; the physics keeps it
     apply_camera_options(camera_options, frame.camera);
-    frame_body(world, params, aspect, frame.camera, camera_options.zoom);
+    frame_body(world, aspect, frame.camera, camera_options.zoom);
     const auto fix_camera = [&] {
         if (camera_options.target) frame.camera.target = *camera_options.target;
         if (camera_options.distance) frame.camera.distance = *camera_options.distance;
@@ -400,7 +403,7 @@ int render_command(int argc, char** argv) {
         }
         world_view(world, alpha, frame);
         if (camera_options.follow) {
-            frame_body(world, params, aspect, frame.camera, camera_options.zoom);
+            frame_body(world, aspect, frame.camera, camera_options.zoom);
             fix_camera();
         }
         renderer.draw(frame, width, height);
@@ -500,13 +503,13 @@ int render_bench(int argc, char** argv) {
     // The default scene as `softbody render` draws it, and what writing the PNG adds.
     SceneOptions scene;
     const Scene resolved = scene.resolve();
-    const Params& params = resolved.params;
-    World world(make_world_def(resolved));
+    const WorldSettings& params = resolved.settings;
+    World world(resolved);
     world.run(30);
     render::Frame frame;
     world_view(world, 1.0f, frame);
     match_ground(params, frame.appearance);
-    frame_body(world, params, aspect, frame.camera, 1.0f);
+    frame_body(world, aspect, frame.camera, 1.0f);
     std::vector<double> total, png;
     const auto png_path = std::filesystem::temp_directory_path() / "softbody_render_bench.png";
     for (int f = -10; f < frames; ++f) {
@@ -520,8 +523,8 @@ int render_bench(int argc, char** argv) {
         if (f >= 0 && f % 10 == 0) png.push_back(ms_since(png_start));
     }
     std::filesystem::remove(png_path);
-    std::printf("%-22s %9zu %10zu %15.3f %10.3f %10.2f   + PNG %.1f ms\n", "default scene", world.mesh().render_vertices.size(),
-                world.mesh().triangle_count(), renderer.timings().surface_ms, renderer.timings().upload_ms,
+    std::printf("%-22s %9zu %10zu %15.3f %10.3f %10.2f   + PNG %.1f ms\n", "default scene", world.soft_body(0).mesh.render_vertices.size(),
+                world.soft_body(0).mesh.triangle_count(), renderer.timings().surface_ms, renderer.timings().upload_ms,
                 median(total), median(png));
     std::cout << "\nnormals: interpolation and normal recomputation on the CPU; stream: orphaning the vertex\n"
                  "buffer and writing the new vertices; frame: draw() plus reading the pixels back.\n";

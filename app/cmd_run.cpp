@@ -151,7 +151,7 @@ std::unique_ptr<Demo> make_demo(const SceneOptions& scene) {
     try {
         demo = std::make_unique<Demo>(resolved);
         for (const std::string& note : demo->world().notes()) std::cerr << "softbody: note: " << note << "\n";
-        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? resolved.params.mesh : default_scene_path());
+        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? scene.mesh : default_scene_path());
     } catch (const InputError& e) {
         first_error = e.what();
         demo = std::make_unique<Demo>(load_scene(default_scene_path()));
@@ -244,20 +244,25 @@ void Session::summarise() {
     const Vec3 com = world.center_of_mass();
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016" PRIx64, world.state_hash());
-    const bool soft = world.soft_body_count() > 0;
+    std::size_t particles = 0, pinned = 0;
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+        particles += world.soft_body(b).particle_count();
+        pinned += world.soft_body(b).def.pinned.size();
+    }
     nlohmann::ordered_json out = {
-        {"mesh", soft ? world.mesh().source : ""}, {"particles", soft ? world.particle_count() : 0}, {"ticks", world.ticks()},
+        {"particles", particles}, {"ticks", world.ticks()},
         {"sim_time", world.time()},   {"com", {com.x, com.y, com.z}},       {"status", world.status() == Status::Ok ? "ok" : "diverged"},
-        {"pinned", world.params().pinned.size()}, {"error", demo->error()}, {"state_hash", hash},
+        {"pinned", pinned}, {"error", demo->error()}, {"state_hash", hash},
+        {"soft_bodies", soft_bodies_json(world)},
         {"rigid_bodies", rigid_bodies_json(world)},
-        {"params", nlohmann::json::parse(scene_to_json(demo->scene()))},
+        {"scene", nlohmann::json::parse(scene_to_json(demo->scene()))},
     };
     // The integrator comparison: each world's integrator, substeps and total energy now.
     if (demo->comparing()) {
         const auto entry = [](World& w) {
             char h[17];
             std::snprintf(h, sizeof h, "%016" PRIx64, w.state_hash());
-            return nlohmann::ordered_json{{"integrator", std::string(to_string(w.params().integrator))}, {"substeps", w.substeps_in_use()},
+            return nlohmann::ordered_json{{"integrator", std::string(to_string(w.settings().integrator))}, {"substeps", w.substeps_in_use()},
                                           {"ticks", w.ticks()}, {"status", w.status() == Status::Ok ? "ok" : "diverged"},
                                           {"total_energy", w.energy().total()}, {"state_hash", h}};
         };

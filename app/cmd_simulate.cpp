@@ -104,10 +104,10 @@ int simulate_command(int argc, char** argv) {
     if ((ticks < 0) == (seconds < 0.0)) throw UsageError("give exactly one of --seconds or --ticks");
 
     const Scene resolved = scene.resolve();
-    const Params& params = resolved.params;
-    World world(make_world_def(resolved), WorldOptions{threads, false});
+    const WorldSettings& settings = resolved.settings;
+    World world(resolved, WorldOptions{threads, false});
     for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
-    if (seconds >= 0.0) ticks = std::llround(seconds / double(params.dt));
+    if (seconds >= 0.0) ticks = std::llround(seconds / double(settings.dt));
 
     std::vector<std::unique_ptr<Dump>> dumps;
     if (!dump_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_path, Dump::Kind::Particles));
@@ -118,7 +118,7 @@ int simulate_command(int argc, char** argv) {
     // its last second.
     ContactEnergy contact_work;
     std::deque<double> last_second;
-    const std::size_t ticks_a_second = std::max<std::size_t>(1, std::size_t(std::llround(1.0 / double(params.dt))));
+    const std::size_t ticks_a_second = std::max<std::size_t>(1, std::size_t(std::llround(1.0 / double(settings.dt))));
     for (std::int64_t t = 0; t < ticks && world.status() == Status::Ok; ++t) {
         world.tick();
         contact_work.total += world.contact_energy().total;
@@ -145,7 +145,6 @@ int simulate_command(int argc, char** argv) {
         vertices += world.soft_body(b).mesh.vertex_to_particle.size();
     }
     nlohmann::ordered_json out = {
-        {"mesh", params.mesh},
         {"vertices", vertices},
         {"particles", particles},
         {"springs", springs},
@@ -153,7 +152,7 @@ int simulate_command(int argc, char** argv) {
         {"sim_time", world.time()},
         {"wall_time", wall},
         {"threads", world.threads()},
-        {"integrator", to_string(params.integrator)},
+        {"integrator", to_string(settings.integrator)},
         {"substeps", s.substeps},
         {"energy",
          {{"kinetic", e.kinetic}, {"rotational", e.rotational}, {"gravity", e.gravity}, {"elastic", e.elastic}, {"total", e.total()}}},

@@ -124,8 +124,8 @@ struct Run {
 
 void count_step(btDynamicsWorld* world, btScalar) { ++*static_cast<int*>(world->getWorldUserInfo()); }
 
-Run run(const Scene& scene, const WorldDef& def, Config config, double seconds, bool pyramid) {
-    const Params& p = scene.params;
+Run run(const Scene& scene, const std::vector<RigidBody>& made, Config config, double seconds, bool pyramid) {
+    const WorldSettings& p = scene.settings;
     btDefaultCollisionConfiguration configuration;
     btCollisionDispatcher dispatcher(&configuration);
     btDbvtBroadphase broadphase;
@@ -145,7 +145,7 @@ Run run(const Scene& scene, const WorldDef& def, Config config, double seconds, 
         ground->setUserIndex(kGround);
         world.addRigidBody(ground.get());
     }
-    for (const RigidBody& body : def.rigid_bodies) {
+    for (const RigidBody& body : made) {
         shapes.push_back(make_shape(body));
         const RigidMotion m = rigid_motion(body, body.initial.data());
         btTransform start;
@@ -201,10 +201,10 @@ Run run(const Scene& scene, const WorldDef& def, Config config, double seconds, 
         const btVector3 down = basis.transpose() * btVector3(0, 0, -1);
         b.lowest_z = double((t * shape->localGetSupportingVertex(down)).z());
         if (!is_finite(b.x) || !is_finite(b.v) || !is_finite(b.omega)) r.finite = false;
-        if (!def.rigid_bodies[i].fixed && rb.getActivationState() == ISLAND_SLEEPING) ++r.sleeping;
+        if (!made[i].fixed && rb.getActivationState() == ISLAND_SLEEPING) ++r.sleeping;
         now.push_back(b);
     }
-    r.figures = soundness(def.rigid_bodies, now, p.ground ? std::optional<double>(p.ground_height) : std::nullopt, pyramid);
+    r.figures = soundness(made, now, p.ground ? std::optional<double>(p.ground_height) : std::nullopt, pyramid);
 
     for (auto& rb : bodies) world.removeRigidBody(rb.get());
     if (ground) world.removeRigidBody(ground.get());
@@ -256,11 +256,12 @@ int peer(int argc, char** argv) {
     if (scene_name.empty()) throw BadInput("--scene NAME is required (--help lists the options)");
 
     const Scene scene = load_scene(scene_name);
-    if (!scene.params.mesh.empty() || !scene.soft_bodies.empty() || !scene.springs.empty()) {
+    if (!scene.soft_bodies.empty() || !scene.springs.empty()) {
         throw BadInput(scene_name + ": the peer builds rigid bodies only, and this scene has a soft body or springs");
     }
-    const WorldDef def = make_world_def(scene);
-    for (const RigidBody& body : def.rigid_bodies) {
+    std::vector<RigidBody> made;
+    for (const RigidBodyDef& body : scene.rigid_bodies) made.push_back(make_rigid_body(body));
+    for (const RigidBody& body : made) {
         // Bullet takes the inertia tensor's diagonal in the body's own axes; ours is diagonal
         // there for boxes, spheres and cylinders, and for symmetric meshes.
         const Mat3& J = body.J_body;
@@ -276,7 +277,7 @@ int peer(int argc, char** argv) {
     gCalculateCombinedRollingFrictionCallback = combined_rolling;
     gCalculateCombinedSpinningFrictionCallback = combined_spinning;
     for (Config config : configs) {
-        const Run r = run(scene, def, config, seconds, is_pyramid(scene_name));
+        const Run r = run(scene, made, config, seconds, is_pyramid(scene_name));
         const Soundness& s = r.figures;
         nlohmann::ordered_json j = {
             {"engine", "bullet"},
@@ -285,7 +286,7 @@ int peer(int argc, char** argv) {
             {"config", key(config)},
             {"label", label(config)},
             {"bodies", s.bodies},
-            {"seconds", std::round(r.ticks * double(scene.params.dt) * 1e6) / 1e6},
+            {"seconds", std::round(r.ticks * double(scene.settings.dt) * 1e6) / 1e6},
             {"ticks", r.ticks},
             {"steps", r.steps},
             {"ms_per_tick", r.ms_per_tick},

@@ -35,14 +35,14 @@ nlohmann::ordered_json soft_bodies_json(const World& world) {
     nlohmann::ordered_json out = nlohmann::ordered_json::array();
     for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
         const SoftBody& body = world.soft_body(b);
-        out.push_back({{"name", body.name},
+        out.push_back({{"name", body.name()},
                        {"mesh", body.mesh.source},
                        {"vertices", body.mesh.vertex_to_particle.size()},
                        {"mesh_particles", body.mesh.particle_count()},
                        {"particles", body.particle_count()},
                        {"scale", body.scale_used},
-                       {"scale_auto", body.params.scale == 0.0f},
-                       {"up_axis", body.params.up_axis}});
+                       {"scale_auto", body.def.scale == 0.0f},
+                       {"up_axis", body.def.up_axis}});
     }
     return out;
 }

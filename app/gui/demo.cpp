@@ -76,14 +76,14 @@ void level_axes(const render::Camera& camera, glm::vec2& right, glm::vec2& forwa
 
 }  // namespace
 
-Demo::Demo(const Scene& scene) : clock_(scene.params.dt) {
-    world_ = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+Demo::Demo(const Scene& scene) : clock_(scene.settings.dt) {
+    world_ = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
     after_load(scene);
 }
 
 bool Demo::load(const Scene& scene) {
     try {
-        auto world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+        auto world = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
         world_ = std::move(world);
         after_load(scene);
         error_.clear();
@@ -95,15 +95,15 @@ bool Demo::load(const Scene& scene) {
 }
 
 void Demo::after_load(const Scene& scene) {
-    scene_ = scene;
-    built_rigid_bodies_ = scene.rigid_bodies;
-    clock_ = FixedClock(scene.params.dt, max_ticks_per_frame);
+    lesson_ = scene;
+    clock_ = FixedClock(scene.settings.dt, max_ticks_per_frame);
     energy_.clear();
     contact_work_.clear();
     last_collision_.reset();
     compared_.clear();  // a new scene: one world again
+    selected_body_ = 0;
     stop_inspecting();
-    match_ground(scene.params, appearance);
+    match_ground(scene.settings, appearance);
     follow = moving_body_count(*world_) == 1;  // one body: the view goes where it goes
     frame_body();
     sample_energy();
@@ -123,18 +123,26 @@ bool Demo::load_scene_file(const std::string& path) {
 }
 
 bool Demo::load_mesh_file(const std::string& path) {
+    // The selected soft body takes the mesh (a scene without one gets a soft body of it).
     Scene scene = this->scene();
-    scene.params.mesh = path;
-    scene.params.pinned.clear();  // vertex numbers of another mesh mean nothing here
-    fit_brought_mesh(scene.params);  // sized and stood up: the last mesh's scale is not this one's
+    if (scene.soft_bodies.empty()) {
+        SoftBodyDef body;
+        body.name = unique_name("body");
+        scene.soft_bodies.push_back(body);
+    }
+    SoftBodyDef& body = scene.soft_bodies[std::min(selected_body(), scene.soft_bodies.size() - 1)];
+    body.mesh = path;
+    body.geometry.reset();
+    body.pinned.clear();     // vertex numbers of another mesh mean nothing here
+    fit_brought_mesh(body);  // sized and stood up: the last mesh's scale is not this one's
     if (!load(scene)) return false;
     source_ = path;
     return true;
 }
 
 Scene Demo::scene() const {
-    Scene scene = scene_;
-    scene.params = world_->params();
+    Scene scene = lesson_;
+    static_cast<WorldDef&>(scene) = world_->def();
     return scene;
 }
 
@@ -152,22 +160,18 @@ void Demo::reset() {
     std::vector<CompareSetup> setups;
     for (const ComparedWorld& c : compared_) setups.push_back(c.setup);
     compared_.clear();  // made again below, once the main world is back at its start
-    if (scene_.rigid_bodies != built_rigid_bodies_) {
-        // Rigid bodies' keys that apply at reset: the world is made again from the scene.
-        const Scene scene = this->scene();
-        const std::string source = source_;
-        if (!load(scene)) return;
-        source_ = source;
-    } else {
+    try {
         world_->reset();
-        scene_.params = world_->params();
-        clock_.reset();
-        energy_.clear();
-    contact_work_.clear();
-        last_collision_.reset();
-        sample_energy();
-        history_.start(*world_);
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        return;
     }
+    clock_.reset();
+    energy_.clear();
+    contact_work_.clear();
+    last_collision_.reset();
+    sample_energy();
+    history_.start(*world_);
     if (setups.empty()) return;
     for (const CompareSetup& setup : setups) compared_.push_back(ComparedWorld{setup, nullptr, History{}, {}, {}});
     build_compared();
@@ -198,11 +202,11 @@ bool Demo::compare(const std::vector<CompareSetup>& others) {
     return compared_.size() == others.size();
 }
 
-Params Demo::compared_params(const ComparedWorld& copy, Params params) const {
-    params.integrator = copy.setup.integrator;
-    params.auto_substeps = copy.setup.auto_substeps;
-    if (!copy.setup.auto_substeps) params.substeps = copy.setup.substeps;
-    return params;
+WorldSettings Demo::compared_settings(const ComparedWorld& copy, WorldSettings settings) const {
+    settings.integrator = copy.setup.integrator;
+    settings.auto_substeps = copy.setup.auto_substeps;
+    if (!copy.setup.auto_substeps) settings.substeps = copy.setup.substeps;
+    return settings;
 }
 
 bool Demo::build_compared() {
@@ -217,8 +221,8 @@ bool Demo::build_compared() {
         for (std::size_t k = 0; k < compared_.size(); ++k) {
             ComparedWorld& c = compared_[k];
             Scene scene = base;
-            scene.params = compared_params(c, base.params);
-            c.world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
+            scene.settings = compared_settings(c, base.settings);
+            c.world = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
             c.history.start(*c.world);
             c.offset = across * (spacing * float(k + 1));
             c.color = integrator_color(c.setup.integrator);
@@ -235,147 +239,157 @@ bool Demo::build_compared() {
     return true;
 }
 
-void Demo::edit(const Params& params) {
+void Demo::edit_settings(const WorldSettings& settings) {
     try {
-        if (!(params == world_->params())) changed();
-        world_->set_params(params);
-        for (ComparedWorld& c : compared_) c.world->set_params(compared_params(c, params));
-        clock_.set_dt(params.dt);
-        match_ground(params, appearance);
+        if (!(settings == world_->settings())) changed();
+        world_->set_settings(settings);
+        for (ComparedWorld& c : compared_) c.world->set_settings(compared_settings(c, settings));
+        after_keys();
     } catch (const std::exception& e) {
         error_ = e.what();
     }
 }
 
 void Demo::edit_rigid_body(std::size_t index, const RigidBodyDef& def) {
-    if (index >= scene_.rigid_bodies.size()) return;
+    if (index >= world_->rigid_body_count()) return;
     try {
-        (void)make_rigid_body(def);  // refuse now what the reset would refuse
-        changed();
-        scene_.rigid_bodies[index] = def;
-        world_->set_rigid_material(index, def.restitution, def.friction);
-        for (ComparedWorld& c : compared_) c.world->set_rigid_material(index, def.restitution, def.friction);
+        const RigidBodyId id = world_->rigid_body_id(index);
+        if (!(def == world_->def(id))) changed();
+        world_->set_def(id, def);
+        for (ComparedWorld& c : compared_) c.world->set_def(c.world->rigid_body_id(index), def);
     } catch (const std::exception& e) {
         error_ = e.what();
     }
 }
 
-void Demo::edit_body(std::size_t body, const Params& params) {
+void Demo::edit_body(std::size_t body, const SoftBodyDef& def) {
     if (body >= world_->soft_body_count()) return;
-    // The flat keys' body: its keys travel with the world's (a preset saves them flat).
-    if (body == 0 && world_->soft_body(0).name == "body") {
-        Params all = world_->params();
-        for (const ParamInfo& info : param_table()) {
-            if (info.scope == ParamScope::Body) set_param(all, info.key, param_text(params, info.key));
-        }
-        edit(all);
-        return;
-    }
     try {
-        if (!(params == world_->soft_body(body).params)) changed();
-        world_->set_body_params(body, params);
-        for (ComparedWorld& c : compared_) c.world->set_body_params(body, params);
-        // The scene keeps them: a reset builds the body from them, a preset saves them.
-        const std::size_t k = body - (scene_.params.mesh.empty() ? 0 : 1);
-        if (k < scene_.soft_bodies.size()) scene_.soft_bodies[k].params = params;
+        const SoftBodyId id = world_->soft_body_id(body);
+        if (!(def == world_->def(id))) changed();
+        world_->set_def(id, def);
+        for (ComparedWorld& c : compared_) c.world->set_def(c.world->soft_body_id(body), def);
     } catch (const std::exception& e) {
         error_ = e.what();
+    }
+}
+
+std::string Demo::unique_name(const std::string& stem) const {
+    const std::vector<std::string> taken = names(world_->def());
+    if (std::find(taken.begin(), taken.end(), stem) == taken.end()) return stem;
+    for (int n = 2;; ++n) {
+        const std::string name = stem + std::to_string(n);
+        if (std::find(taken.begin(), taken.end(), name) == taken.end()) return name;
     }
 }
 
 bool Demo::add_body(AddKind kind, const std::string& mesh) {
-    Scene scene = this->scene();
-    const std::vector<std::string> names = body_names(scene);
-    const auto unique = [&](const std::string& stem) {
-        for (int n = 1;; ++n) {
-            const std::string name = stem + std::to_string(n);
-            if (std::find(names.begin(), names.end(), name) == names.end()) return name;
-        }
-    };
     // Above the scene where the camera looks: over its target, clear of the highest body.
     const WorldBounds bounds = world_bounds(*world_);
     const float top = world_->soft_body_count() + world_->rigid_body_count() > 0 ? bounds.centre.z + bounds.radius : 0.0f;
     const float size = 0.5f;
-    const Vec3 at{camera.target.x, camera.target.y, std::max(top, params().ground ? params().ground_height : 0.0f) + size + 0.3f};
-    if (kind == AddKind::RigidBox || kind == AddKind::RigidBall) {
-        RigidBodyDef def;
-        def.name = unique(kind == AddKind::RigidBox ? "box" : "ball");
-        def.shape = kind == AddKind::RigidBox ? ShapeKind::Box : ShapeKind::Sphere;
-        if (def.shape == ShapeKind::Box) def.size = Vec3d{size, size, size};
-        else def.radius = 0.5 * size;
-        def.density = 150.0;
-        def.position = Vec3d(at);
-        scene.rigid_bodies.push_back(def);
-    } else {
-        SoftBodyScene body;
-        body.name = unique(kind == AddKind::SoftBall ? "jelly_ball" : kind == AddKind::SoftCube ? "jelly_cube" : "mesh");
-        body.params.mesh = kind == AddKind::SoftBall ? "ball:2" : kind == AddKind::SoftCube ? "cube:4" : mesh;
-        if (kind == AddKind::MeshFile) fit_brought_mesh(body.params);  // sized and stood up, as a dropped file is
-        else {
-            body.params.scale = size;
-            body.params.up_axis = "z";
-        }
-        body.params.particle_mass = 0.05f;
-        body.params.stiffness = 60.0f;
-        body.params.damping = 1.5f;
-        body.params.position = at;
-        scene.soft_bodies.push_back(body);
-    }
-    // The world made again with it, the bodies it had going on from where they are.
+    const WorldSettings& settings = world_->settings();
+    const Vec3 at{camera.target.x, camera.target.y, std::max(top, settings.ground ? settings.ground_height : 0.0f) + size + 0.3f};
+    // Made in the running world (and in each compared copy), the others going on from where they are.
     try {
-        auto world = std::make_unique<World>(make_world_def(scene), WorldOptions{hardware_threads(), false});
-        world->restore(world_->snapshot(), true);
-        world->set_params(world_->params());
-        world_ = std::move(world);
+        changed();
+        if (kind == AddKind::RigidBox || kind == AddKind::RigidBall) {
+            RigidBodyDef def;
+            def.name = unique_name(kind == AddKind::RigidBox ? "box1" : "ball1");
+            def.shape = kind == AddKind::RigidBox ? ShapeKind::Box : ShapeKind::Sphere;
+            if (def.shape == ShapeKind::Box) def.size = Vec3d{size, size, size};
+            else def.radius = 0.5 * size;
+            def.density = 150.0;
+            def.position = Vec3d(at);
+            world_->create_rigid_body(def);
+            for (ComparedWorld& c : compared_) c.world->create_rigid_body(def);
+        } else {
+            SoftBodyDef body;
+            body.name = unique_name(kind == AddKind::SoftBall ? "jelly_ball1" : kind == AddKind::SoftCube ? "jelly_cube1" : "mesh1");
+            body.mesh = kind == AddKind::SoftBall ? "ball:2" : kind == AddKind::SoftCube ? "cube:4" : mesh;
+            if (kind == AddKind::MeshFile) fit_brought_mesh(body);  // sized and stood up, as a dropped file is
+            else {
+                body.scale = size;
+                body.up_axis = "z";
+            }
+            body.particle_mass = 0.05f;
+            body.stiffness = 60.0f;
+            body.damping = 1.5f;
+            body.position = at;
+            const SoftBodyId id = world_->create_soft_body(body);
+            body.geometry = world_->def(id).geometry;  // loaded once
+            for (ComparedWorld& c : compared_) c.world->create_soft_body(body);
+        }
     } catch (const std::exception& e) {
         error_ = e.what();
         return false;
     }
-    scene_ = scene;
-    built_rigid_bodies_ = scene.rigid_bodies;
-    compared_.clear();  // the copies had the old scene
-    energy_.clear();
+    after_structure_change();
+    return true;
+}
+
+bool Demo::remove_body(bool rigid, std::size_t index) {
+    try {
+        changed();
+        if (rigid) {
+            if (index >= world_->rigid_body_count()) return false;
+            for (ComparedWorld& c : compared_) c.world->destroy(c.world->rigid_body_id(index));
+            world_->destroy(world_->rigid_body_id(index));
+        } else {
+            if (index >= world_->soft_body_count()) return false;
+            for (ComparedWorld& c : compared_) c.world->destroy(c.world->soft_body_id(index));
+            world_->destroy(world_->soft_body_id(index));
+        }
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        return false;
+    }
+    after_structure_change();
+    return true;
+}
+
+// Something was made or unmade: a keyframe there (time travel goes back across it), and what
+// the panels held about the bodies starts again.
+void Demo::after_structure_change() {
+    history_.keyframe_now(*world_);
+    for (ComparedWorld& c : compared_) c.history.keyframe_now(*c.world);
     last_collision_.reset();
     stop_inspecting();
-    sample_energy();
-    history_.start(*world_);
+    if (selected_body_ >= world_->soft_body_count()) selected_body_ = 0;
     error_.clear();
-    return true;
 }
 
 void Demo::set_key(const std::string& key, const std::string& value) {
     try {
-        const auto dot = key.find('.');
-        const std::string name = dot == std::string::npos ? "" : key.substr(0, dot);
-        for (std::size_t b = 0; b < scene_.rigid_bodies.size(); ++b) {
-            if (scene_.rigid_bodies[b].name != name) continue;
-            RigidBodyDef def = scene_.rigid_bodies[b];
-            set_rigid_key(def, key.substr(dot + 1), value);
-            edit_rigid_body(b, def);
-            return;
+        // Checked on a copy of the definition first, so a bad value changes nothing and a good
+        // one drops the recorded future only when it changes something.
+        WorldDef def = world_->def();
+        const ThingNames names = thing_names(def);
+        const std::vector<KeyTarget> targets = resolve_key(key, names);
+        const KeyValue v = parse_key_text(targets.front(), names, value);
+        bool differs = false;
+        for (const KeyTarget& t : targets) differs = differs || !(get_key(def, t) == v);
+        if (differs) changed();
+        world_->set_key(key, v);
+        // The compared copies keep their own integrator and substeps.
+        const bool own = targets.front().owner == KeyOwner::World &&
+                         (key == "integrator" || key == "auto_substeps" || key == "substeps");
+        if (!own) {
+            for (ComparedWorld& c : compared_) c.world->set_key(key, v);
         }
-        // A world key or the flat soft body's (as "stiffness" or "body.stiffness"), or another
-        // soft body's ("jelly.stiffness"), each through its body's own path.
-        Scene scene = this->scene();
-        set_scene_key(scene, key, value);
-        for (std::size_t k = 0; k < scene.soft_bodies.size(); ++k) {
-            if (scene.soft_bodies[k] == scene_.soft_bodies[k]) continue;
-            edit_body(k + (scene_.params.mesh.empty() ? 0 : 1), scene.soft_bodies[k].params);
-            return;
-        }
-        edit(scene.params);
+        after_keys();
     } catch (const std::exception& e) {
         error_ = e.what();
     }
 }
 
-bool Demo::reset_pending() const {
-    const Params& now = world_->params();
-    const Params& built = scene_.params;
-    return now.scale != built.scale || now.init_height != built.init_height || !(now.rotation == built.rotation) ||
-           !(now.initial_velocity == built.initial_velocity) || now.pinned != built.pinned ||
-           scene_.rigid_bodies != built_rigid_bodies_;
+// What follows the world's keys outside it: the clock's tick and the ground as drawn.
+void Demo::after_keys() {
+    clock_.set_dt(world_->settings().dt);
+    match_ground(world_->settings(), appearance);
 }
+
+bool Demo::reset_pending() const { return world_->reset_pending(); }
 
 void Demo::advance(double wall_seconds) {
     run_due_ticks(wall_seconds);
@@ -485,28 +499,24 @@ void Demo::go_to_tick(std::uint64_t tick) {
 }
 
 void Demo::rewind(double seconds) {
-    const double dt = double(world_->params().dt);
+    const double dt = double(world_->settings().dt);
     const auto back = static_cast<std::uint64_t>(std::llround(std::max(0.0, seconds) / dt));
     go_to_tick(world_->ticks() > back ? world_->ticks() - back : 0);
 }
 
-// A replayed tick may bring back keys of that moment: the clock's dt and the rigid bodies'
-// restitution and friction as the panels show them follow.
+// A replayed tick may bring back keys of that moment, and a keyframe what the world held: the
+// clock's dt and the ground follow, and a selection of a body no longer there is dropped.
 void Demo::after_travel() {
-    clock_.set_dt(world_->params().dt);
-    match_ground(world_->params(), appearance);
-    for (std::size_t b = 0; b < scene_.rigid_bodies.size() && b < world_->rigid_body_count(); ++b) {
-        scene_.rigid_bodies[b].restitution = world_->rigid_body(b).restitution;
-        scene_.rigid_bodies[b].friction = world_->rigid_body(b).friction;
-    }
+    after_keys();
+    if (selected_body_ >= world_->soft_body_count()) selected_body_ = 0;
 }
 
 // A collision, not resting contact: a point closing faster than two steps of gravity (and at
 // least 1 cm/s, for a world without gravity). The one with the largest impulse is kept.
 void Demo::note_collision() {
     const World& world = *world_;
-    const double h = double(world.params().dt) / world.substeps_in_use();
-    const double closing = std::max(0.01, 2.0 * std::abs(double(world.params().gravity.z)) * h);
+    const double h = double(world.settings().dt) / world.substeps_in_use();
+    const double closing = std::max(0.01, 2.0 * std::abs(double(world.settings().gravity.z)) * h);
     const RigidContact* hardest = nullptr;
     for (const RigidContact& c : world.contacts()) {
         if (c.approach_speed > closing && (!hardest || c.normal_impulse > hardest->normal_impulse)) hardest = &c;
@@ -515,7 +525,7 @@ void Demo::note_collision() {
     const RigidContact& c = *hardest;
     LastCollision hit;
     hit.time = world.time();
-    hit.body_1 = c.soft >= 0 ? "particle " + std::to_string(c.a) + " of '" + world.soft_body(std::size_t(c.soft)).name + "'"
+    hit.body_1 = c.soft >= 0 ? "particle " + std::to_string(c.a) + " of '" + world.soft_body(std::size_t(c.soft)).name() + "'"
                              : world.rigid_body(c.a).name;
     hit.body_2 = c.b < 0 ? "the ground" : world.rigid_body(std::size_t(c.b)).name;
     hit.points = std::size_t(std::count_if(world.contacts().begin(), world.contacts().end(), [&](const RigidContact& d) {
@@ -556,8 +566,8 @@ void Demo::frame_body() {
     }
     const glm::vec3 com = bounds.centre;
     const float radius = std::max(bounds.radius, 0.25f);
-    const float ground = params().ground_height;
-    const float bottom = params().ground ? std::min(ground, com.z - radius) : com.z - radius;
+    const float ground = world_->settings().ground_height;
+    const float bottom = world_->settings().ground ? std::min(ground, com.z - radius) : com.z - radius;
     const float top = com.z + radius;
     const glm::vec3 centre{com.x, com.y, 0.5f * (top + bottom)};
     camera.frame(centre, std::max(0.5f * (top - bottom), radius) * 1.15f, aspect * (1.0f - 2.0f * shift));
@@ -630,7 +640,7 @@ render::Frame Demo::make_frame() const {
     if (comparing()) {
         // Every world in its integrator's colour, the copies beside the main one (or over it).
         const float alpha = paused || w.status() != Status::Ok ? 1.0f : static_cast<float>(clock_.alpha());
-        const glm::vec3 own = integrator_color(w.params().integrator);
+        const glm::vec3 own = integrator_color(w.settings().integrator);
         for (render::BodyView& v : frame.soft_bodies) v.color = own;
         for (render::RigidBodyView& v : frame.rigid_bodies) {
             if (!v.fixed) v.color = own;
@@ -800,20 +810,16 @@ void Demo::end_grab() {
     world_->set_grab(std::nullopt);
 }
 
-void Demo::toggle_pin(std::uint32_t particle) {
-    // Pins are kept as vertex numbers in the params, so they survive a reset and a saved preset.
-    const bool pin = !world_->is_pinned(particle);
-    Params params = world_->params();
-    const SoftBody& body = world_->body();
-    std::erase_if(params.pinned, [&](std::uint32_t v) { return particle_of_vertex(body, v) == particle; });
-    if (pin) params.pinned.push_back(vertex_of_particle(body, particle));
-    world_->set_params(params);
-    scene_.params.pinned = params.pinned;
-    world_->set_pinned(particle, pin);
-    history_.keyframe_now(*world_);  // a pin is part of the state, not of a tick's inputs
+void Demo::toggle_pin(std::size_t body, std::uint32_t particle) {
+    if (body >= world_->soft_body_count() || particle >= world_->soft_body(body).particle_count()) return;
+    // The world keeps a pin as a vertex number in the body's keys: it survives a reset and a
+    // saved preset. A pin is part of the state, not of a tick's inputs: a keyframe here.
+    const bool pin = !world_->soft_body(body).is_pinned(particle);
+    changed();
+    world_->set_pinned(body, particle, pin);
+    history_.keyframe_now(*world_);
     for (ComparedWorld& c : compared_) {
-        c.world->set_params(compared_params(c, params));
-        c.world->set_pinned(particle, pin);
+        c.world->set_pinned(body, particle, pin);
         c.history.keyframe_now(*c.world);
     }
 }

@@ -13,7 +13,7 @@
 #include "physics/clock.h"
 #include "physics/history.h"
 #include "physics/inspect.h"
-#include "physics/params.h"
+#include "physics/keys.h"
 #include "physics/scene_io.h"
 #include "physics/world.h"
 #include "render/frame.h"
@@ -74,29 +74,28 @@ public:
     bool save_preset(const std::string& path, bool overwrite);  // false + error() on failure
     void reset();
 
-    // Parameter edits from the UI: live keys apply now, the others at reset (see params.h).
-    void edit(const Params& params);
-    const Params& params() const { return world_->params(); }
-    // The soft body the Parameters panel edits (clicking a soft body selects it), and its
-    // keys: live ones apply now, the rest at reset, through the body's own path
-    // (World::set_body_params); the flat body's go with the world's keys (edit).
+    // Key edits from the UI: keys that apply at once do so now, the others at reset (keys.h),
+    // through the world's own setters (the compared copies follow). A bad value is shown as
+    // the error, never thrown.
+    void edit_settings(const WorldSettings& settings);
+    // The soft body the Parameters panel edits (clicking a soft body selects it).
     std::size_t selected_body() const { return selected_body_ < world_->soft_body_count() ? selected_body_ : 0; }
     void select_body(std::size_t body) { selected_body_ = body; }
-    const Params& body_params(std::size_t body) const { return world_->soft_body(body).params; }
-    void edit_body(std::size_t body, const Params& params);
+    void edit_body(std::size_t body, const SoftBodyDef& def);
+    void edit_rigid_body(std::size_t index, const RigidBodyDef& def);
+    // One key as --set takes it: "dt", "stiffness" (every soft body's), NAME.KEY for a named
+    // body or spring.
+    void set_key(const std::string& key, const std::string& value);
 
-    // The Add menu: a body dropped above the scene where the camera looks, the world going on
-    // from where it is (the others keep their motion). False and error() when it cannot be made.
+    // The Add menu: a body dropped above the scene where the camera looks, made in the running
+    // world (the others keep their motion). False and error() when it cannot be made.
     enum class AddKind { SoftBall, SoftCube, RigidBox, RigidBall, MeshFile };
     bool add_body(AddKind kind, const std::string& mesh = {});
+    // Takes a body out of the world (and the springs attached to it). Time travel goes back
+    // across it.
+    bool remove_body(bool rigid, std::size_t index);
 
-    // A rigid body's keys: restitution and friction apply now, the rest at reset.
-    void edit_rigid_body(std::size_t index, const RigidBodyDef& def);
-    const RigidBodyDef& rigid_body_def(std::size_t index) const { return scene_.rigid_bodies[index]; }
-    // One key as --set takes it: a world or flat-body key, or NAME.KEY for a named body. Shows
-    // what is wrong as the error instead of throwing.
-    void set_key(const std::string& key, const std::string& value);
-    // The scene as it stands: what a preset saves (the current params, every body).
+    // The scene as it stands: what a preset saves (every key and body now, the lesson's words).
     Scene scene() const;
     bool reset_pending() const;  // a key that applies at reset differs from what the world was built with
 
@@ -175,7 +174,7 @@ public:
     void drag(float x, float y, float width, float height);
     void end_grab();
     bool grabbing() const { return world_->grab().has_value(); }
-    void toggle_pin(std::uint32_t particle);
+    void toggle_pin(std::size_t body, std::uint32_t particle);
 
     // --- The inspector: one particle's forces, equation by equation, or one rigid body's ----
     void inspect(const Pick& pick);
@@ -194,12 +193,14 @@ private:
     void tick_once();       // one tick, recorded or replayed
     void changed();         // the user changed the world: in the past, the recorded future is dropped
     void after_travel();    // the panels' records follow the world to its new moment
-    Params compared_params(const ComparedWorld& copy, Params params) const;  // its integrator and substeps
+    WorldSettings compared_settings(const ComparedWorld& copy, WorldSettings settings) const;  // its integrator and substeps
     bool build_compared();  // the copies from the scene as it stands, at the main world's tick 0
+    void after_keys();
+    void after_structure_change();
+    std::string unique_name(const std::string& stem) const;
 
     std::unique_ptr<World> world_;
-    Scene scene_;            // what the current world was built from (its params kept by the world)
-    std::vector<RigidBodyDef> built_rigid_bodies_;  // the rigid bodies as the world was built
+    Scene lesson_;           // the scene loaded: its title, text and closed form (the world keeps the rest)
     FixedClock clock_;
     History history_;
     std::vector<ComparedWorld> compared_;

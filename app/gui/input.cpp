@@ -28,8 +28,8 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
                     if (picked) demo.inspect(*picked);
                     else demo.stop_inspecting();
                     drag_button_ = -1;
-                } else if (picked && e.shift && !picked->rigid && picked->body == 0) {
-                    demo.toggle_pin(picked->particle);  // shift-click: pin or free
+                } else if (picked && e.shift && !picked->rigid) {
+                    demo.toggle_pin(picked->body, picked->particle);  // shift-click: pin or free
                     drag_button_ = -1;
                 } else if (picked) {
                     demo.begin_grab(*picked, px, py, width, height);

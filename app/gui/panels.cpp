@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "gui/bindings.h"
 #include "gui/demo.h"
+#include "gui/key_widgets.h"
 #include "gui/recorder.h"
 #include "physics/pair_forces.h"
 #include "physics/rigid_body.h"
@@ -21,30 +22,6 @@ namespace softbody::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Slider ranges: where a value is useful to drag, inside the valid range params.h enforces.
-struct SliderRange {
-    const char* key;
-    float min, max;
-    bool logarithmic;
-};
-constexpr SliderRange kSliders[] = {
-    {"scale", 0.05f, 10.0f, true},       {"rotation", -180.0f, 180.0f, false}, {"init_height", 0.0f, 10.0f, false},
-    {"initial_velocity", -10.0f, 10.0f, false}, {"angular_velocity", -20.0f, 20.0f, false},
-    {"particle_mass", 0.001f, 100.0f, true},
-    {"stiffness", 0.0f, 1000.0f, true},  {"damping", 0.0f, 10.0f, true},
-    {"gravity", -30.0f, 30.0f, false},   {"dt", 0.001f, 0.05f, true},
-    {"drag_coefficient", 0.0f, 2.0f, false}, {"air_density", 0.0f, 1000.0f, true},
-    {"ground_height", -2.0f, 2.0f, false}, {"restitution", 0.0f, 1.0f, false},
-    {"static_friction", 0.0f, 2.0f, false}, {"dynamic_friction", 0.0f, 2.0f, false},
-};
-
-const SliderRange* slider_range(std::string_view key) {
-    for (const auto& r : kSliders) {
-        if (key == r.key) return &r;
-    }
-    return nullptr;
-}
 
 std::vector<std::string> list_files(const std::string& folder, std::initializer_list<const char*> extensions) {
     std::vector<std::string> files;
@@ -65,22 +42,6 @@ std::string presets_folder() {
     if (data && *data) return std::string(data) + "/softbody/presets";
     if (home && *home) return std::string(home) + "/.local/share/softbody/presets";
     return "presets";
-}
-
-void tooltip(const ParamInfo& info) {
-    if (!ImGui::IsItemHovered()) return;
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
-    ImGui::TextUnformatted(std::string(info.summary).c_str());
-    if (!info.unit.empty()) ImGui::Text("unit: %s", std::string(info.unit).c_str());
-    if (!info.equation.empty()) ImGui::Text("enters: %s", std::string(info.equation).c_str());
-    if (info.type == ParamType::Float || info.type == ParamType::Int || info.type == ParamType::Vec3) {
-        ImGui::Text("valid: %s%g .. %g", info.min_exclusive ? "above " : "", info.min, info.max);
-    }
-    ImGui::TextDisabled(info.live ? "applies at once" : "applies on reset (it changes the particles)");
-    ImGui::TextDisabled("right-click: back to the default");
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
 }
 
 std::string memory_text(std::size_t n) {
@@ -169,7 +130,7 @@ void Panels::simulation(Demo& demo, float fps) {
 void Panels::timeline(Demo& demo) {
     const World& world = demo.world();
     const History& history = demo.history();
-    const double dt = world.params().dt;
+    const double dt = world.settings().dt;
     int oldest = static_cast<int>(history.oldest_tick()), newest = static_cast<int>(history.newest_tick());
     int tick = static_cast<int>(world.ticks());
     ImGui::BeginDisabled(newest == oldest);
@@ -214,15 +175,15 @@ void Panels::stability(Demo& demo) {
     } else if (fraction > 0.9f) {
         ImGui::TextColored(colour, "Close to the limit.");
     }
-    Params params = demo.params();
-    if (ImGui::Checkbox("automatic substeps", &params.auto_substeps)) demo.edit(params);
+    WorldSettings settings = demo.world().settings();
+    if (ImGui::Checkbox("automatic substeps", &settings.auto_substeps)) demo.edit_settings(settings);
     if (!s.stable && s.substeps_needed > 0) {
         ImGui::SameLine();
         char fix[48];
         std::snprintf(fix, sizeof fix, "Use %d substeps", s.substeps_needed);
         if (ImGui::SmallButton(fix)) {
-            params.substeps = s.substeps_needed;
-            demo.edit(params);
+            settings.substeps = s.substeps_needed;
+            demo.edit_settings(settings);
         }
     }
 }
@@ -314,7 +275,7 @@ void Panels::energy_by_integrator(Demo& demo) {
     draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
     const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
     for (std::size_t k = 0; k < worlds; ++k) {
-        const Integrator integrator = k == 0 ? demo.params().integrator : compared[k - 1].setup.integrator;
+        const Integrator integrator = k == 0 ? demo.world().settings().integrator : compared[k - 1].setup.integrator;
         const glm::vec3 c = integrator_color(integrator);
         std::vector<ImVec2> points;
         for (const auto& s : history) {
@@ -332,7 +293,7 @@ void Panels::energy_by_integrator(Demo& demo) {
 // what each is doing now.
 void Panels::compare(Demo& demo) {
     constexpr Integrator kAll[4] = {Integrator::Verlet, Integrator::SymplecticEuler, Integrator::ExplicitEuler, Integrator::RK4};
-    const Integrator main = demo.params().integrator;
+    const Integrator main = demo.world().settings().integrator;
     const auto swatch = [](Integrator integrator) {
         const glm::vec3 c = integrator_color(integrator);
         ImGui::ColorButton("##colour", ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
@@ -397,160 +358,74 @@ void Panels::compare(Demo& demo) {
     ImGui::TextWrapped("The mouse grabs the first world only; keys, pins, Reset and the timeline act on all.");
 }
 
+// Every key with a widget, from the table (keys.h): the world's, the selected soft body's, and
+// each named spring's. A widget hands its typed value to the definition's setter, checked once.
 void Panels::parameters(Demo& demo) {
-    Params params = demo.params();
-    // Several soft bodies: the body keys are the selected body's (click a body to select it),
-    // each edited through that body's own path; the world keys are the world's.
     const World& world = demo.world();
-    const std::size_t selected = demo.selected_body();
-    const bool flat = world.soft_body_count() > 0 && selected == 0 && world.soft_body(0).name == "body";
-    Params body = world.soft_body_count() > 0 ? demo.body_params(selected) : params;
-    if (world.soft_body_count() > 1) {
-        if (ImGui::BeginCombo("body", world.soft_body(selected).name.c_str())) {
-            for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
-                if (ImGui::Selectable(world.soft_body(b).name.c_str(), b == selected)) demo.select_body(b);
-            }
-            ImGui::EndCombo();
+    ImGui::TextDisabled("World");
+    WorldSettings settings = world.settings();
+    for (const KeyInfo* info : keys_of(KeyOwner::World)) {
+        if (!has_widget(*info)) continue;
+        KeyValue value = get_key(settings, *info);
+        if (key_widget(*info, value)) {
+            set_key(settings, *info, value);
+            demo.edit_settings(settings);
         }
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Whose body keys are below (or click a soft body in the view).");
     }
-    bool changed = false, body_changed = false;
-    const Params defaults;
-    for (const ParamInfo& info : param_table()) {
-        const std::string key(info.key);
-        if (info.type == ParamType::String || info.type == ParamType::IndexList) continue;  // Mesh panel / pins
-        const bool of_body = info.scope == ParamScope::Body && !flat && world.soft_body_count() > 0;
-        Params& target = of_body ? body : params;
-        if (info.type == ParamType::OptionalVec3) {
-            // position and color: a box to set them (off: "none"), then three numbers.
-            bool set = param_text(target, key) != "none";
-            const std::string box = "##set" + key;
-            bool edited = ImGui::Checkbox(box.c_str(), &set);
-            ImGui::SameLine();
-            float values[3] = {0.0f, 0.0f, info.key == "color" ? 0.8f : 1.0f};
-            if (set && param_text(target, key) != "none") std::sscanf(param_text(target, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
-            const std::string label = info.live ? key : key + " *";
-            if (info.key == "color") edited |= ImGui::ColorEdit3(label.c_str(), values, ImGuiColorEditFlags_NoInputs);
-            else edited |= ImGui::DragFloat3(label.c_str(), values, 0.05f, float(info.min), float(info.max), "%.2f");
-            tooltip(info);
-            if (edited) {
-                char text[96];
-                std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", values[0], values[1], values[2]);
-                set_param(target, key, set ? text : "none");
-                (of_body ? body_changed : changed) = true;
+    if (world.soft_body_count() > 0) {
+        // Several soft bodies: the keys are the selected body's (click a body to select it).
+        const std::size_t selected = demo.selected_body();
+        ImGui::Separator();
+        if (world.soft_body_count() > 1) {
+            if (ImGui::BeginCombo("soft body", world.soft_body(selected).name().c_str())) {
+                for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+                    if (ImGui::Selectable(world.soft_body(b).name().c_str(), b == selected)) demo.select_body(b);
+                }
+                ImGui::EndCombo();
             }
-            continue;
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Whose keys are below (or click a soft body in the view).");
+        } else {
+            ImGui::TextDisabled("Soft body '%s'", world.soft_body(selected).name().c_str());
         }
-        const std::string label = info.live ? key : key + " *";
-        bool edited = false;
-        const SliderRange* range = slider_range(key);
-        const ImGuiSliderFlags flags = range && range->logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
-        // A key with a word for 0 ("auto" scale, "all" particles): a checkbox for the word, and
-        // the slider for a number when it is off.
-        if (!info.zero_word.empty()) {
-            bool word = param_text(target, key) == info.zero_word;
-            const std::string box = std::string(info.zero_word) + "##" + key;
-            if (ImGui::Checkbox(box.c_str(), &word)) {
-                set_param(target, key, word ? std::string(info.zero_word) : param_text(defaults, key) == info.zero_word
-                                                                          ? (info.type == ParamType::Int ? "3000" : "1")
-                                                                          : param_text(defaults, key));
-                edited = true;
-            }
-            tooltip(info);
-            ImGui::SameLine();
-            if (word) {
-                ImGui::TextUnformatted(label.c_str());
-                (of_body ? body_changed : changed) |= edited;
-                continue;
+        SoftBodyDef def = world.soft_body(selected).def;
+        for (const KeyInfo* info : keys_of(KeyOwner::SoftBody)) {
+            if (!has_widget(*info)) continue;
+            KeyValue value = get_key(def, *info);
+            if (key_widget(*info, value)) {
+                set_key(def, *info, value);
+                demo.edit_body(selected, def);
             }
         }
-        switch (info.type) {
-            case ParamType::Float: {
-                float value = std::stof(param_text(target, key));
-                edited |= ImGui::SliderFloat(label.c_str(), &value, range->min, range->max, "%.4g", flags);
-                if (edited) {
-                    const double lowest = info.min_exclusive ? info.min + 1e-6 : info.min;
-                    char text[32];
-                    std::snprintf(text, sizeof text, "%.9g", std::clamp(double(value), lowest, info.max));
-                    set_param(target, key, text);
-                }
-                break;
-            }
-            case ParamType::Int: {
-                int value = std::stoi(param_text(target, key));
-                const int lowest = static_cast<int>(info.min);
-                const int highest = key == "renormalize_every" ? 50 : key == "max_particles" ? int(info.max) : 64;
-                const ImGuiSliderFlags int_flags = key == "max_particles" ? ImGuiSliderFlags_Logarithmic : 0;
-                edited |= ImGui::SliderInt(label.c_str(), &value, lowest, highest, "%d", int_flags);
-                if (edited) set_param(target, key, std::to_string(std::max(lowest, value)));
-                break;
-            }
-            case ParamType::Axis: {
-                static constexpr const char* kAxes[] = {"x", "y", "z", "-x", "-y", "-z"};
-                int current = 2;
-                for (int a = 0; a < 6; ++a) {
-                    if (target.up_axis == kAxes[a]) current = a;
-                }
-                if (ImGui::Combo(label.c_str(), &current, "x\0y\0z\0-x\0-y\0-z\0")) {
-                    set_param(target, key, kAxes[current]);
-                    edited = true;
-                }
-                break;
-            }
-            case ParamType::Bool: {
-                bool value = param_text(target, key) == "true";
-                edited = ImGui::Checkbox(label.c_str(), &value);
-                if (edited) set_param(target, key, value ? "true" : "false");
-                break;
-            }
-            case ParamType::Vec3: {
-                float values[3] = {};
-                std::sscanf(param_text(target, key).c_str(), "%f,%f,%f", &values[0], &values[1], &values[2]);
-                const float speed = key == "rotation" ? 1.0f : 0.05f;
-                edited = ImGui::DragFloat3(label.c_str(), values, speed, range->min, range->max, "%.2f");
-                if (edited) {
-                    char text[96];
-                    std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", values[0], values[1], values[2]);
-                    set_param(target, key, text);
-                }
-                break;
-            }
-            case ParamType::Integrator: {
-                int current = static_cast<int>(target.integrator);
-                const char* names = "verlet\0symplectic_euler\0explicit_euler\0rk4\0";
-                edited = ImGui::Combo(label.c_str(), &current, names);
-                if (edited) target.integrator = static_cast<Integrator>(current);
-                break;
-            }
-            default: break;
+        ImGui::Text("pinned: %zu vertices", def.pinned.size());
+        ImGui::SameLine();
+        if (ImGui::SmallButton("free all")) {
+            def.pinned.clear();
+            demo.edit_body(selected, def);
         }
-        tooltip(info);
-        if (ImGui::IsItemClicked(ImGuiMouseButton_Right)) {
-            set_param(target, key, param_text(defaults, key));
-            edited = true;
-        }
-        (of_body ? body_changed : changed) |= edited;
     }
-    ImGui::Text("pinned: %zu vertices", params.pinned.size());
-    ImGui::SameLine();
-    if (ImGui::SmallButton("free all")) {
-        params.pinned.clear();
-        changed = true;
+    for (std::size_t k = 0; k < world.spring_count(); ++k) {
+        SpringDef def = world.def(world.spring_id(k));
+        if (def.name.empty()) continue;
+        ImGui::Separator();
+        ImGui::TextDisabled("Spring '%s'", def.name.c_str());
+        ImGui::PushID(int(k));
+        for (const KeyInfo* info : keys_of(KeyOwner::Spring)) {
+            KeyValue value = get_key(def, *info);
+            if (key_widget(*info, value)) {
+                set_key(def, *info, value);
+                demo.set_key(def.name + "." + std::string(info->name), key_text(*info, value));
+            }
+        }
+        ImGui::PopID();
     }
-    if (changed) demo.edit(params);
-    if (body_changed) demo.edit_body(selected, body);
     ImGui::TextDisabled("* applies on reset");
     if (demo.reset_pending()) {
         ImGui::SameLine();
         if (ImGui::SmallButton("reset now")) demo.reset();
     }
-    if (ImGui::Button("All to defaults")) {
-        Params fresh;
-        fresh.mesh = params.mesh;
-        demo.edit(fresh);
-    }
+    if (ImGui::Button("World to defaults")) demo.edit_settings(WorldSettings{});
     ImGui::SameLine();
-    ImGui::TextDisabled("(Listing 8's values; keeps the mesh)");
+    ImGui::TextDisabled("(Listing 8's values)");
 }
 
 void Panels::add(Demo& demo) {
@@ -580,31 +455,31 @@ void Panels::mesh(Demo& demo) {
     const World& world = demo.world();
     const bool soft = world.soft_body_count() > 0;
     if (soft) {
-        const Mesh& mesh = world.mesh();
-        const SoftBody& body = world.body();
+        const SoftBody& body = world.soft_body(demo.selected_body());
+        const Mesh& mesh = body.mesh;
         ImGui::TextWrapped("%s", fs::path(mesh.source).filename().string().c_str());
         if (body.reduced) {
-            ImGui::Text("%zu vertices, simulated on %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+            ImGui::Text("%zu vertices, simulated on %zu particles", mesh.vertex_to_particle.size(), body.particle_count());
             if (ImGui::IsItemHovered()) {
                 // max_particles all (0) is capped too: no body runs on more than kMaxParticles.
-                const bool all = body.params.max_particles == 0;
+                const bool all = body.def.max_particles == 0;
                 ImGui::SetTooltip("Above %s (%zu): the %zu distinct positions follow %zu particles chosen over\n"
                                   "the body (skinning); each weighs %.3g particles' mass, k and c as much again.",
                                   all ? "the cap on max_particles=all" : "max_particles",
-                                  all ? kMaxParticles : std::size_t(body.params.max_particles), mesh.particle_count(), world.particle_count(),
-                                  double(mesh.particle_count()) / double(world.particle_count()));
+                                  all ? kMaxParticles : std::size_t(body.def.max_particles), mesh.particle_count(), body.particle_count(),
+                                  double(mesh.particle_count()) / double(body.particle_count()));
             }
         } else {
-            ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), world.particle_count());
+            ImGui::Text("%zu vertices -> %zu particles", mesh.vertex_to_particle.size(), body.particle_count());
         }
-        ImGui::Text("scale %.4g%s, +%s up", double(body.scale_used), body.params.scale == 0.0f ? " (auto: 1 m, centred)" : "",
-                    body.params.up_axis.c_str());
+        ImGui::Text("scale %.4g%s, +%s up", double(body.scale_used), body.def.scale == 0.0f ? " (auto: 1 m, centred)" : "",
+                    body.def.up_axis.c_str());
         if (ImGui::IsItemHovered()) {
             ImGui::SetTooltip("A mesh opened or dropped without a scene is sized so its largest side is 1 m and stood\n"
                               "up (+y up, as most exporters write). Parameters: scale, up_axis (both on reset).");
         }
-        ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), world.spring_count());
-        ImGui::Text("memory %s", memory_text(world.particle_count()).c_str());
+        ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), body.spring_count());
+        ImGui::Text("memory %s", memory_text(body.particle_count()).c_str());
     } else {
         ImGui::TextWrapped("No soft body in this scene: open a mesh to add one.");
     }
@@ -614,7 +489,7 @@ void Panels::mesh(Demo& demo) {
         }
         ImGui::EndCombo();
     }
-    if (ImGui::BeginCombo("mesh", soft ? fs::path(world.mesh().source).filename().string().c_str() : "(none)")) {
+    if (ImGui::BeginCombo("mesh", soft ? fs::path(world.soft_body(demo.selected_body()).mesh.source).filename().string().c_str() : "(none)")) {
         for (const auto& file : meshes_) {
             if (ImGui::Selectable(fs::path(file).filename().string().c_str())) demo.load_mesh_file(file);
         }
@@ -633,7 +508,7 @@ void Panels::inspector(Demo& demo) {
         ImGui::Text("%-8s %8.3f %8.3f %8.3f %s", label, double(v.x), double(v.y), double(v.z), unit);
     };
     if (const auto in = demo.particle_inspection()) {
-        ImGui::Text("particle %u of '%s'%s", in->particle, demo.world().soft_body(in->body).name.c_str(),
+        ImGui::Text("particle %u of '%s'%s", in->particle, demo.world().soft_body(in->body).name().c_str(),
                     in->mass == 0.0f ? " (pinned)" : "");
         vec("x", in->x, "m");
         vec("v", in->v, "m/s");
@@ -730,7 +605,7 @@ void Panels::rigid_bodies(Demo& demo) {
     }
     const std::size_t i = std::size_t(rigid_selected_);
     const RigidBody& body = world.rigid_body(i);
-    RigidBodyDef def = demo.rigid_body_def(i);
+    RigidBodyDef def = world.def(world.rigid_body_id(i));
     ImGui::TextDisabled("%s, volume %.4g m^3%s", std::string(to_string(body.shape)).c_str(), body.volume,
                         body.hull_mass_properties ? " (its hull's: the mesh is open)" : "");
 
@@ -744,13 +619,13 @@ void Panels::rigid_bodies(Demo& demo) {
     }
     if (ImGui::Checkbox("fixed *", &def.fixed)) edited = true;
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Infinite mass: scenery such as a fulcrum or a ramp.");
-    float e = def.restitution.value_or(demo.params().restitution);
+    float e = def.restitution.value_or(world.settings().restitution);
     if (ImGui::SliderFloat("restitution e", &e, 0.0f, 1.0f, "%.2f")) {
         def.restitution = e;
         edited = true;
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Eq. 38: an impact's normal velocity leaves at -e times the speed it came in with.");
-    float mu = def.friction.value_or(demo.params().dynamic_friction);
+    float mu = def.friction.value_or(world.settings().dynamic_friction);
     if (ImGui::SliderFloat("friction mu", &mu, 0.0f, 2.0f, "%.2f")) {
         def.friction = mu;
         edited = true;

@@ -75,7 +75,7 @@ std::string rigid_body_fault(const RigidBody& body, const double* state) {
 void World::check_divergence() {
     std::string what;
     for (std::size_t b = 0; b < soft_.size() && what.empty(); ++b) {
-        const std::string who = soft_.size() > 1 ? "body '" + soft_[b].name + "' particle " : "particle ";
+        const std::string who = soft_.size() > 1 ? "body '" + soft_[b].name() + "' particle " : "particle ";
         what = soft_body_fault(soft_[b], who);
     }
     // A body asleep or fixed has not moved since it was last checked (nor can it have).
@@ -106,7 +106,7 @@ void World::check_divergence() {
     std::ostringstream out;
     out << "diverged in tick " << ticks_ << " (t = " << fixed(time(), 2) << " s): " << what << ". ";
     if (!s.stable) {
-        out << "The step is past its stability limit for " << to_string(params_.integrator) << " (h*omega = "
+        out << "The step is past its stability limit for " << to_string(settings_.integrator) << " (h*omega = "
             << fixed(s.h_omega, 2) << ", limit " << fixed(s.limit, 2) << ", growth " << fixed(s.growth, 3)
             << " per step): ";
         if (s.substeps_needed > 0) {
@@ -134,8 +134,8 @@ void World::take_energy_baseline() {
     energy_scale_ = e.kinetic + e.elastic;
     for (const SoftBody& body : soft_) {
         double height = 0.0;
-        if (params_.ground) height = std::max(0.0, double(centre_of(body).z) - double(params_.ground_height));
-        const double weight = double(body.mass) * double(body.particle_count()) * double(length(params_.gravity));
+        if (settings_.ground) height = std::max(0.0, double(centre_of(body).z) - double(settings_.ground_height));
+        const double weight = double(body.mass) * double(body.particle_count()) * double(length(settings_.gravity));
         energy_scale_ += weight * (height + 2.0 * double(body.rest_radius));
     }
     energy_baseline_stale_ = false;
@@ -149,14 +149,14 @@ double World::kinetic_plus_gravity() const {
         for (std::size_t i = 0; i < body.particle_count(); ++i) {
             const Vec3 v = body.v[i];
             if (body.inv_mass[i] != 0.0f) kinetic += 0.5 * double(body.mass) * double(dot(v, v));
-            gravity -= double(body.mass) * double(dot(params_.gravity, body.x[i]));
+            gravity -= double(body.mass) * double(dot(settings_.gravity, body.x[i]));
         }
     }
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         if (rigid_[b].fixed) continue;
         const RigidMotion m = rigid_motion(b);
         kinetic += 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
-        gravity -= rigid_[b].mass * dot(Vec3d(params_.gravity), m.x);
+        gravity -= rigid_[b].mass * dot(Vec3d(settings_.gravity), m.x);
     }
     return kinetic + gravity;
 }

@@ -18,7 +18,7 @@ Energy World::energy() {
             const Vec3 v = body.v[i], x = body.x[i];
             const double m = body.inv_mass[i] == 0.0f ? 0.0 : body.mass;  // pinned particles do not move
             e.kinetic += 0.5 * m * double(dot(v, v));
-            e.gravity -= double(body.mass) * double(dot(params_.gravity, x));
+            e.gravity -= double(body.mass) * double(dot(settings_.gravity, x));
         }
         const PairInput in{body.x.x.data(), body.x.y.data(), body.x.z.data(), body.v.x.data(), body.v.y.data(),
                            body.v.z.data(), body.rest.x.data(), body.rest.y.data(), body.rest.z.data(), n,
@@ -32,7 +32,7 @@ Energy World::energy() {
         const double rotational = 0.5 * dot(m.L, m.omega);
         e.kinetic += 0.5 * dot(m.P, m.v) + rotational;
         e.rotational += rotational;
-        e.gravity -= rigid_[b].mass * dot(Vec3d(params_.gravity), m.x);
+        e.gravity -= rigid_[b].mass * dot(Vec3d(settings_.gravity), m.x);
     }
     // Links: 1/2 k (l - l0)^2.
     for (const Link& link : links_) {
@@ -67,26 +67,33 @@ Vec3d World::angular_momentum() const {
     return L;
 }
 
-Vec3 World::center_of_mass() const {
-    if (soft_.empty()) {
-        // No soft body: the moving rigid bodies' centre of mass (the origin when there are none).
-        Vec3d sum;
-        double mass = 0.0;
-        for (std::size_t b = 0; b < rigid_.size(); ++b) {
-            if (rigid_[b].fixed) continue;
-            sum += rigid_motion(b).x * rigid_[b].mass;
-            mass += rigid_[b].mass;
-        }
-        return mass > 0.0 ? to_float(sum / mass) : Vec3{};
-    }
+Vec3 World::center_of_mass(std::size_t soft_body) const {
+    const SoftBody& body = soft_[soft_body];
     double x = 0.0, y = 0.0, z = 0.0;
-    const std::size_t n = particle_count();
+    const std::size_t n = body.particle_count();
     for (std::size_t i = 0; i < n; ++i) {
-        x += body().x.x[i];
-        y += body().x.y[i];
-        z += body().x.z[i];
+        x += body.x.x[i];
+        y += body.x.y[i];
+        z += body.x.z[i];
     }
     return {float(x / double(n)), float(y / double(n)), float(z / double(n))};
+}
+
+Vec3 World::center_of_mass() const {
+    // Every particle and every moving rigid body, by mass (the origin when nothing moves).
+    Vec3d sum;
+    double mass = 0.0;
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        const double m = double(soft_[b].mass) * double(soft_[b].particle_count());
+        sum += Vec3d(center_of_mass(b)) * m;
+        mass += m;
+    }
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (rigid_[b].fixed) continue;
+        sum += rigid_motion(b).x * rigid_[b].mass;
+        mass += rigid_[b].mass;
+    }
+    return mass > 0.0 ? to_float(sum / mass) : Vec3{};
 }
 
 // The lowest point of any body: a soft body's lowest particle, a rigid body's lowest point of

@@ -446,8 +446,8 @@ Mesh generated_mesh(std::string_view name) {
 
 Mesh open_mesh(const std::string& name) { return is_generated(name) ? generated_mesh(name) : load_mesh(name); }
 
-Scene generated_scene(std::string_view name, const Scene& base) {
-    Scene scene = base;
+Scene generated_scene(std::string_view name) {
+    Scene scene;
     std::size_t start = 0;
     bool soft = false;
     for (;;) {
@@ -459,11 +459,14 @@ Scene generated_scene(std::string_view name, const Scene& base) {
             if (soft) throw InputError(std::string(name) + ": one cloud or ball at most (it is the scene's soft body)");
             soft = true;
             generated_mesh(text);  // checks the count; the World makes the mesh again from its name
-            scene.params.mesh = std::string(text);
-            scene.params.auto_substeps = true;
+            SoftBodyDef body;
+            body.name = "body";
+            body.mesh = std::string(text);
             // Every particle the name asks for is simulated (no particle budget): cloud:5000 in
             // the app is the body `softbody bench` times at N = 5,000.
-            scene.params.max_particles = 0;
+            body.max_particles = 0;
+            scene.soft_bodies.insert(scene.soft_bodies.begin(), std::move(body));
+            scene.settings.auto_substeps = true;
         } else if (part.kind == "pile") {
             pile(count_of(name, part, kMaxPile), scene);
         } else if (part.kind == "boxes") {

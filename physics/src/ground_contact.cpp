@@ -12,7 +12,7 @@ constexpr float kStaticSpeed = 1e-4f;       // m/s: below this tangential speed,
 
 }  // namespace
 
-void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params& world, bool record) {
+void apply_ground_friction(SoftBody& body, const ParticleState& s, const WorldSettings& world, bool record) {
     if (record) body.contacts.clear();
     if (!world.ground) return;
     Vec3Array& force = body.force;
@@ -49,7 +49,7 @@ void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params&
     }
 }
 
-void resolve_ground_contacts(SoftBody& body, const Params& world, float h) {
+void resolve_ground_contacts(SoftBody& body, const WorldSettings& world, float h) {
     const bool verlet = world.integrator == Integrator::Verlet;
     Vec3Array &x = body.x, &v = body.v;
     for (const ParticleContact& c : body.contacts) {
@@ -85,7 +85,7 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
     return h * (length(start.v) + length(start.omega) * body.bounding_radius) + h * h * g + 1e-3;
 }
 
-void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const Params& world, double h,
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const WorldSettings& world, double h,
                            std::vector<RigidContact>& out) {
     if (!world.ground || body.fixed) return;
     const RigidMotion m0 = rigid_motion(body, start);

@@ -13,7 +13,7 @@
 #include "forces.h"
 #include "manifold.h"
 #include "physics/contact.h"
-#include "physics/params.h"
+#include "physics/defs.h"
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 
@@ -21,11 +21,11 @@ namespace softbody {
 
 // Adds friction to body.force, whose entries must hold everything else by now (F_applied).
 // With `record`, remembers each particle in contact (body.contacts) for resolve_ground_contacts.
-void apply_ground_friction(SoftBody& body, const ParticleState& s, const Params& world, bool record);
+void apply_ground_friction(SoftBody& body, const ParticleState& s, const WorldSettings& world, bool record);
 
 // After a step of h: x and v are set together, and Verlet's step with them, so position and
 // velocity stay consistent (x_n - x_{n-1} = v h).
-void resolve_ground_contacts(SoftBody& body, const Params& world, float h);
+void resolve_ground_contacts(SoftBody& body, const WorldSettings& world, float h);
 
 // How far a rigid body's points can move in a step (or tick) of h, from where it was at the start:
 // h (|v| + |w| R) for its motion then, h^2 |g| for gravity's, and a millimetre. A contact is
@@ -38,7 +38,7 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
 // the deepest, and those that span the largest area with it), with their gap then. The ground is
 // static (1/m = 0, J^-1 = 0); the contacts go to the solver (contact_solver.h), with the body's
 // restitution and friction or the world's. `start`: the body's state as the tick began; `h`: the tick.
-void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const Params& world, double h,
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const WorldSettings& world, double h,
                            std::vector<RigidContact>& out);
 
 }  // namespace softbody

@@ -8,26 +8,26 @@ namespace softbody {
 History::History(std::uint64_t keyframe_every, std::uint64_t capacity_ticks)
     : keyframe_every_(std::max<std::uint64_t>(1, keyframe_every)), capacity_ticks_(std::max<std::uint64_t>(1, capacity_ticks)) {}
 
-History::Settings History::settings_of(const World& world) {
-    Settings s;
-    s.params = world.params();
-    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
-        s.restitution.push_back(world.rigid_body(b).restitution);
-        s.friction.push_back(world.rigid_body(b).friction);
-    }
-    return s;
-}
+History::Settings History::settings_of(const World& world) { return world.def(); }
 
 // Only what differs is set: setting the grab or the keys marks the world's energy baseline
-// stale (divergence detection), and a replay must do exactly what the live run did.
+// stale (divergence detection), and a replay must do exactly what the live run did. What was
+// made or unmade between two ticks is not among the inputs: a keyframe holds it (keyframe_now).
 void History::apply(World& world, const TickInputs& inputs) {
     if (inputs.settings) {
         const Settings& s = *inputs.settings;
-        if (!(world.params() == s.params)) world.set_params(s.params);
-        for (std::size_t b = 0; b < world.rigid_body_count() && b < s.restitution.size(); ++b) {
-            if (world.rigid_body(b).restitution != s.restitution[b] || world.rigid_body(b).friction != s.friction[b]) {
-                world.set_rigid_material(b, s.restitution[b], s.friction[b]);
-            }
+        if (!(world.settings() == s.settings)) world.set_settings(s.settings);
+        for (std::size_t b = 0; b < world.soft_body_count() && b < s.soft_bodies.size(); ++b) {
+            const SoftBodyId id = world.soft_body_id(b);
+            if (!(world.def(id) == s.soft_bodies[b]) && world.def(id).name == s.soft_bodies[b].name) world.set_def(id, s.soft_bodies[b]);
+        }
+        for (std::size_t b = 0; b < world.rigid_body_count() && b < s.rigid_bodies.size(); ++b) {
+            const RigidBodyId id = world.rigid_body_id(b);
+            if (!(world.def(id) == s.rigid_bodies[b]) && world.def(id).name == s.rigid_bodies[b].name) world.set_def(id, s.rigid_bodies[b]);
+        }
+        for (std::size_t k = 0; k < world.spring_count() && k < s.springs.size(); ++k) {
+            const SpringId id = world.spring_id(k);
+            if (!(world.def(id) == s.springs[k]) && world.def(id).name == s.springs[k].name) world.set_def(id, s.springs[k]);
         }
     }
     if (world.grab() != inputs.grab) world.set_grab(inputs.grab);

@@ -25,7 +25,7 @@ ParticleInspection inspect_particle(const World& world, std::size_t b, std::uint
     const SoftBody& body = world.soft_body(b);
     const std::size_t n = body.particle_count();
     if (i >= n) throw std::out_of_range("inspect_particle: no such particle");
-    const Params& p = world.params();
+    const WorldSettings& p = world.settings();
     const float h = p.dt / float(world.substeps_in_use());
 
     ParticleInspection out;
@@ -104,9 +104,9 @@ ParticleInspection inspect_particle(const World& world, std::size_t b, std::uint
     if (length(link_force_here) > 0.0f) add("springs to other bodies", "Eq. 33", link_force_here);
 
     // Eq. 23, this particle's share, by the step's own function.
-    if (body.params.drag_coefficient > 0.0f && p.air_density > 0.0f) {
+    if (body.def.drag_coefficient > 0.0f && p.air_density > 0.0f) {
         Vec3Array with = others;
-        add_drag(with, s, n, p.air_density, body.params.drag_coefficient, body.rest_radius, body.mass, h);
+        add_drag(with, s, n, p.air_density, body.def.drag_coefficient, body.rest_radius, body.mass, h);
         add("drag", "Eq. 23", with[i] - others[i], "its share of -1/2 rho C_D S |v| v (implicit over the step)");
     }
 
@@ -154,7 +154,7 @@ ParticleInspection inspect_particle(const World& world, std::size_t b, std::uint
     // Other soft bodies (or its own, with self_collision) in the last substep: as the particle
     // against their surface, and as a corner of a triangle another body's particle pressed on.
     for (const SoftContact& c : world.soft_contacts()) {
-        const std::string other = "'" + world.soft_body(c.body_a == b ? c.body_b : c.body_a).name + "'";
+        const std::string other = "'" + world.soft_body(c.body_a == b ? c.body_b : c.body_a).name() + "'";
         char detail[128];
         if (c.body_a == b && c.particle == i) {
             std::snprintf(detail, sizeof detail, "against its surface: lambda %.3g N s over the substep, friction %.3g N s",
@@ -178,7 +178,7 @@ RigidInspection inspect_rigid(const World& world, std::size_t b) {
     if (b >= world.rigid_body_count()) throw std::out_of_range("inspect_rigid: no such rigid body");
     const RigidBody& body = world.rigid_body(b);
     const RigidMotion m = world.rigid_motion(b);
-    const Params& p = world.params();
+    const WorldSettings& p = world.settings();
     const float h = p.dt / float(world.substeps_in_use());
     RigidInspection out;
     out.body = b;
@@ -225,7 +225,7 @@ RigidInspection inspect_rigid(const World& world, std::size_t b) {
         const Vec3d J = contact_impulse(c) * (a_side ? 1.0 : -1.0);
         if (J == Vec3d{}) continue;
         const Vec3d r = a_side ? c.arm_a : c.arm_b;
-        const std::string other = c.soft >= 0 ? "a particle of '" + world.soft_body(std::size_t(c.soft)).name + "'"
+        const std::string other = c.soft >= 0 ? "a particle of '" + world.soft_body(std::size_t(c.soft)).name() + "'"
                                   : c.b < 0          ? "the ground"
                                   : a_side           ? "'" + world.rigid_body(std::size_t(c.b)).name + "'"
                                                      : "'" + world.rigid_body(c.a).name + "'";

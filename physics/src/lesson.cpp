@@ -95,7 +95,7 @@ struct SlopeFrame {
     double theta = 0.0, g = 0.0;
 };
 SlopeFrame slope_frame(const World& world, std::optional<std::size_t> slope) {
-    const Vec3d g(world.params().gravity);
+    const Vec3d g(world.settings().gravity);
     SlopeFrame f;
     f.g = length(g);
     f.n = slope ? world.rigid_motion(*slope).R * Vec3d{0.0, 0.0, 1.0} : Vec3d{0.0, 0.0, 1.0};  // a box's top face (its z)
@@ -112,7 +112,7 @@ SlopeFrame slope_frame(const World& world, std::optional<std::size_t> slope) {
 bool touches(const World& world, std::size_t soft, std::optional<std::size_t> slope) {
     if (!slope) {
         const SoftBody& body = world.soft_body(soft);
-        const float ground = world.params().ground_height;
+        const float ground = world.settings().ground_height;
         for (std::size_t i = 0; i < body.particle_count(); ++i) {
             if (body.x.z[i] <= ground + 1e-3f) return true;
         }
@@ -187,7 +187,7 @@ LessonMeter::LessonMeter(LessonExpect expect, const World& world) : expect_(std:
         if (world.rigid_body(body_).fixed) fail("'" + expect_.body + "' is fixed: it cannot move");
     } else {
         for (std::size_t i = 0; i < world.soft_body_count() && !found; ++i) {
-            if (world.soft_body(i).name == expect_.body) body_ = i, found = true;
+            if (world.soft_body(i).name() == expect_.body) body_ = i, found = true;
         }
         if (!found) fail("no soft body named '" + expect_.body + "'");
     }
@@ -196,7 +196,7 @@ LessonMeter::LessonMeter(LessonExpect expect, const World& world) : expect_(std:
             if (world.rigid_body(i).name == expect_.slope) slope_ = i;
         }
         if (!slope_) fail("no rigid body named '" + expect_.slope + "'");
-    } else if (expect_.kind == "friction_slope" && !world.params().ground) {
+    } else if (expect_.kind == "friction_slope" && !world.settings().ground) {
         fail("no slope: name a rigid body as \"slope\", or turn the ground on");
     }
     if (expect_.kind == "spring_period" || expect_.kind == "damper_decay") {
@@ -278,7 +278,7 @@ void LessonMeter::observe(const World& world) {
         return;
     }
     last_tick_ = world.ticks();
-    const double t = world.time(), dt = double(world.params().dt);
+    const double t = world.time(), dt = double(world.settings().dt);
     const std::string& kind = expect_.kind;
     if (kind == "spring_period" || kind == "damper_decay") {
         // The spring's length l each tick; an extremum where it turns, placed between the ticks
@@ -387,8 +387,8 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         // Eq. 23 against the weight: m g = 1/2 rho C_D S v^2, so v_t = sqrt(2 m g / (rho C_D S));
         // falling from rest, v = v_t tanh(g t / v_t).
         const RigidBody& b = world.rigid_body(body_);
-        const double g = length(Vec3d(world.params().gravity));
-        const double drag = 0.5 * double(world.params().air_density) * double(b.drag_coefficient) * b.drag_area;
+        const double g = length(Vec3d(world.settings().gravity));
+        const double drag = 0.5 * double(world.settings().air_density) * double(b.drag_coefficient) * b.drag_area;
         Comparison v = comparison("terminal speed", "v_t = sqrt(2 m g / (rho C_D S))", "Eq. 23", "m/s");
         v.predicted = drag > 0.0 ? std::sqrt(b.mass * g / drag) : kNaN;
         if (!(drag > 0.0)) v.predicted_text = "none: no drag";
@@ -407,8 +407,8 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         const SlopeFrame f = slope_frame(world, slope_);
         // A particle on a rigid body: the body's friction for both, if it sets one (SCENES.md).
         const std::optional<float> own = slope_ ? world.rigid_body(*slope_).friction : std::nullopt;
-        const double mu_s = own ? double(*own) : double(world.params().static_friction);
-        const double mu_d = own ? double(*own) : double(world.params().dynamic_friction);
+        const double mu_s = own ? double(*own) : double(world.settings().static_friction);
+        const double mu_d = own ? double(*own) : double(world.settings().dynamic_friction);
         const bool slides = std::tan(f.theta) > mu_s;
         Comparison hold = comparison("tan theta against mu_s", "held while tan theta <= mu_s", "Eq. 24", "");
         hold.predicted = std::tan(f.theta);
@@ -438,7 +438,7 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         // PHYSICS.md, stability: all pairs joined, equal masses; the fastest mode is the whole
         // body's swelling, omega^2 = N k / m, and Verlet is stable while N (k h^2 + 2 c h) < 4 m.
         const SoftBody& b = world.soft_body(body_);
-        const double N = double(b.particle_count()), h = double(world.params().dt) / world.substeps_in_use();
+        const double N = double(b.particle_count()), h = double(world.settings().dt) / world.substeps_in_use();
         const double ratio = N * (double(b.stiffness) * h * h + 2.0 * double(b.damping) * h) / (4.0 * double(b.mass));
         Comparison s = comparison("N (k h^2 + 2 c h) / 4 m", "stable below 1 (Verlet)", "Listing 8, stability", "");
         s.predicted = ratio;
@@ -542,11 +542,11 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         // integrators turn q by a rotation (symplectic Euler) or keep it to their own error (RK4).
         const RigidBody& b = world.rigid_body(body_);
         const double w = length(rigid_motion(b, b.initial.data()).omega);
-        const int every = world.params().renormalize_every;
-        const double h = double(world.params().dt) / world.substeps_in_use();
+        const int every = world.settings().renormalize_every;
+        const double h = double(world.settings().dt) / world.substeps_in_use();
         const std::uint64_t ticks = every > 0 ? world.ticks() % std::uint64_t(every) : world.ticks();
         const double steps = double(ticks) * world.substeps_in_use();
-        const bool euler = world.params().integrator == Integrator::ExplicitEuler;
+        const bool euler = world.settings().integrator == Integrator::ExplicitEuler;
         Comparison q = comparison("|q|", euler ? "(1 + (h w / 2)^2)^(n / 2), n steps since renormalising" : "1 (a rotation keeps it)",
                      "Eq. 35, Listing 9", "");
         q.predicted = euler ? std::pow(1.0 + 0.25 * h * h * w * w, 0.5 * steps) : 1.0;

@@ -12,7 +12,7 @@ constexpr double kStaticSpeed = 1e-4;  // m/s across the surface: below it, the 
 }  // namespace
 
 void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                             std::span<const double> start, const Params& world, double h, std::vector<RigidContact>& out) {
+                             std::span<const double> start, const WorldSettings& world, double h, std::vector<RigidContact>& out) {
     const std::size_t n = body.particle_count();
     if (n == 0 || bodies.empty()) return;
     const double g = length(Vec3d(world.gravity));

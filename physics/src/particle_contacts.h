@@ -9,7 +9,7 @@
 #include "physics/arrays.h"
 #include "physics/collide.h"
 #include "physics/contact.h"
-#include "physics/params.h"
+#include "physics/defs.h"
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 
@@ -26,6 +26,6 @@ namespace softbody {
 // ground), mu_d when it was sliding. Restitution is the larger of the world's and the rigid
 // body's.
 void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                             std::span<const double> start, const Params& world, double h, std::vector<RigidContact>& out);
+                             std::span<const double> start, const WorldSettings& world, double h, std::vector<RigidContact>& out);
 
 }  // namespace softbody

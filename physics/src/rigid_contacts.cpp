@@ -13,7 +13,7 @@ constexpr std::size_t kPairGrain = 32;
 }  // namespace
 
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                         std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
+                         std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
                          std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep, ThreadPool* pool) {
     const std::size_t n = bodies.size();
     if (n < 2) return;

@@ -10,7 +10,7 @@
 #include "physics/broad_phase.h"
 #include "physics/collide.h"
 #include "physics/contact.h"
-#include "physics/params.h"
+#include "physics/defs.h"
 #include "physics/rigid_body.h"
 #include "physics/thread_pool.h"
 
@@ -34,7 +34,7 @@ struct RigidContactScratch {
     std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)
 };
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                         std::span<const double> start, const Params& world, double h, RigidContactScratch& scratch,
+                         std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
                          std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {},
                          ThreadPool* pool = nullptr);
 

@@ -15,6 +15,7 @@
 #include "message_text.h"
 #include "physics/error.h"
 #include "physics/generated.h"
+#include "physics/keys.h"
 #include "physics/lesson.h"
 #include "text_file.h"
 
@@ -46,99 +47,107 @@ std::string type_name(const json& value) {
     return value.type_name();
 }
 
-// The command-line text for a JSON value of the key's type (set_param then checks the range).
-std::string value_text(const ParamInfo& info, const json& value) {
-    auto fail = [&](const char* expected) -> std::string {
-        throw InputError("parameter '" + std::string(info.key) + "': expected " + expected +
-                         (info.zero_word.empty() ? "" : " or \"" + std::string(info.zero_word) + "\"") + ", got " +
-                         type_name(value));
+// A JSON value as a key's value, checked (check_key): numbers as numbers, vectors as arrays,
+// words and paths as strings, the unset word ("none", "auto") or the zero word ("auto", "all")
+// as a string. Throws InputError "key 'NAME': expected ..., got ...".
+KeyValue key_value(const KeyInfo& info, const json& value) {
+    const auto fail = [&](const std::string& expected) -> KeyValue {
+        std::string words;
+        if (info.optional) words += " or \"" + std::string(info.unset_word) + "\"";
+        if (!info.zero_word.empty()) words += " or \"" + std::string(info.zero_word) + "\"";
+        throw InputError("key '" + std::string(info.name) + "': expected " + expected + words + ", got " + type_name(value));
     };
-    if (!info.zero_word.empty() && value.is_string() && value.get<std::string>() == info.zero_word) return std::string(info.zero_word);
-    auto number = [](const json& v) {
-        std::ostringstream out;
-        out.precision(9);
-        out << v.get<double>();
-        return out.str();
+    if (value.is_string()) {
+        const std::string word = value.get<std::string>();
+        if (info.optional && word == info.unset_word) return std::monostate{};
+        if (!info.zero_word.empty() && word == info.zero_word) return 0.0;
+    }
+    const auto number = [&](const json& v) { return info.single ? double(float(v.get<double>())) : v.get<double>(); };
+    const auto numbers = [&](std::size_t count) {
+        return value.is_array() && value.size() == count &&
+               std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); });
     };
+    KeyValue out;
     switch (info.type) {
-        case ParamType::Float:
+        case KeyType::Number:
             if (!value.is_number()) return fail("a number");
-            return number(value);
-        case ParamType::Int:
+            out = number(value);
+            break;
+        case KeyType::Whole:
             if (!value.is_number_integer()) return fail("a whole number");
-            return value.dump();  // exact, even beyond the range of long long (set_param refuses it)
-        case ParamType::Bool:
+            if (value.is_number_unsigned() ? value.get<std::uint64_t>() > 1e15 : std::abs(double(value.get<std::int64_t>())) > 1e15) {
+                // Far out of any range, said with the number as written.
+                throw InputError("key '" + std::string(info.name) + "': must be " + key_range_text(info) + ", got " + value.dump());
+            } else {
+                out = double(value.get<std::int64_t>());
+            }
+            break;
+        case KeyType::Bool:
             if (!value.is_boolean()) return fail("true or false");
-            return value.get<bool>() ? "true" : "false";
-        case ParamType::Vec3:
-        case ParamType::OptionalVec3:
-            if (info.type == ParamType::OptionalVec3 && value.is_string() && value.get<std::string>() == "none") return "none";
-            if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
-                !value[2].is_number()) {
-                return fail(info.type == ParamType::OptionalVec3 ? "an array of three numbers [x, y, z] or \"none\""
-                                                                 : "an array of three numbers [x, y, z]");
-            }
-            return number(value[0]) + "," + number(value[1]) + "," + number(value[2]);
-        case ParamType::String:
-        case ParamType::Integrator:
-        case ParamType::Axis:
+            out = value.get<bool>();
+            break;
+        case KeyType::Vec3:
+            if (!numbers(3)) return fail("an array of three numbers [x, y, z]");
+            out = Vec3d{number(value[0]), number(value[1]), number(value[2])};
+            break;
+        case KeyType::Quat:
+            if (!numbers(4)) return fail("an array of four numbers [w, x, y, z]");
+            out = Quat{value[0].get<double>(), value[1].get<double>(), value[2].get<double>(), value[3].get<double>()};
+            break;
+        case KeyType::Word:
+        case KeyType::Path:
             if (!value.is_string()) return fail("a string");
-            return value.get<std::string>();
-        case ParamType::IndexList: {
+            if (info.type == KeyType::Path && value.get<std::string>().empty()) return fail("a file path");
+            out = value.get<std::string>();
+            break;
+        case KeyType::IndexList: {
             if (!value.is_array()) return fail("an array of vertex indices");
-            std::string out;
-            for (const auto& item : value) {
-                if (!item.is_number_integer()) return fail("an array of vertex indices (whole numbers)");
-                if (!out.empty()) out += ',';
-                out += item.dump();
+            std::vector<std::uint32_t> list;
+            for (const json& item : value) {
+                if (!item.is_number_integer() || (item.is_number_unsigned() ? item.get<std::uint64_t>() > 0xFFFFFFFEull
+                                                                             : item.get<std::int64_t>() < 0 || item.get<std::int64_t>() > 0xFFFFFFFEll)) {
+                    return fail("an array of vertex indices (whole numbers from 0)");
+                }
+                list.push_back(std::uint32_t(item.get<std::int64_t>()));
             }
-            return out;
+            out = std::move(list);
+            break;
         }
     }
-    return {};
+    check_key(info, out);
+    return out;
 }
 
-json value_json(const Params& params, const ParamInfo& info) {
-    const std::string text = param_text(params, info.key);
-    if (!info.zero_word.empty() && text == info.zero_word) return json(text);
-    switch (info.type) {
-        case ParamType::Float: return json(std::stod(text));
-        case ParamType::Int: return json(std::stoll(text));
-        case ParamType::Bool: return json(text == "true");
-        case ParamType::Vec3:
-        case ParamType::OptionalVec3: {
-            json v = json::array();
-            std::istringstream parts(text);
-            for (std::string part; std::getline(parts, part, ',');) v.push_back(std::stod(part));
-            return v;
-        }
-        case ParamType::String:
-        case ParamType::Integrator:
-        case ParamType::Axis: return json(text);
-        case ParamType::IndexList: return json(params.pinned);
+// A key's value as JSON, or null for an unset one (left out of the file). A float's number is
+// written as the 9 digits that read back to it, not as the double it widens to.
+json key_json(const KeyInfo& info, const KeyValue& value) {
+    if (std::holds_alternative<std::monostate>(value)) return json();
+    const auto number = [&](double x) { return info.single ? std::stod(key_text(info, x)) : x; };
+    if (const double* x = std::get_if<double>(&value)) {
+        if (*x == 0.0 && !info.zero_word.empty()) return json(info.zero_word);
+        if (info.type == KeyType::Whole) return json(std::llround(*x));
+        return json(number(*x));
     }
-    return {};
+    if (const bool* b = std::get_if<bool>(&value)) return json(*b);
+    if (const Vec3d* v = std::get_if<Vec3d>(&value)) return json::array({number(v->x), number(v->y), number(v->z)});
+    if (const Quat* q = std::get_if<Quat>(&value)) return json::array({q->w, q->x, q->y, q->z});
+    if (const std::string* text = std::get_if<std::string>(&value)) return json(*text);
+    return json(std::get<std::vector<std::uint32_t>>(value));
 }
 
 // A body's mesh without the keys that say how big it is and which way is up: fitted
 // (fit_brought_mesh), each part only where the file says nothing of it.
-void fit_unless_given(const json& keys, Params& params) {
-    Params fitted = params;
+void fit_unless_given(const json& keys, SoftBodyDef& def) {
+    SoftBodyDef fitted = def;
     fit_brought_mesh(fitted);
-    if (!keys.contains("scale")) params.scale = fitted.scale;
-    if (!keys.contains("rotation") && !keys.contains("up_axis")) params.up_axis = fitted.up_axis;
+    if (!keys.contains("scale")) def.scale = fitted.scale;
+    if (!keys.contains("rotation") && !keys.contains("up_axis")) def.up_axis = fitted.up_axis;
 }
 
 [[noreturn]] void io_error(const std::string& path, const std::string& what) {
     throw InputError(path + ": " + what + " (" + std::strerror(errno) + ")");
 }
 
-std::string number_text(const json& v) {
-    std::ostringstream out;
-    out.precision(17);
-    out << v.get<double>();
-    return out.str();
-}
 
 // Where in the text a nested key is: the line of the first "key" after `from` (an offset), so
 // an error inside the third rigid body points at that body's line, not the first body's.
@@ -166,95 +175,67 @@ std::string relative_to(const std::string& origin, const std::string& path) {
     return folder.empty() ? path : (folder / path).lexically_normal().string();
 }
 
-// A JSON value as command-line text for a rigid body's key (set_rigid_key checks it).
-std::string rigid_value_text(const RigidBodyDef& def, const RigidKeyInfo& info, const json& value) {
-    auto fail = [&](const char* expected) -> std::string {
-        throw InputError("rigid body '" + printable(def.name) + "', key '" + std::string(info.key) + "': expected " +
-                         expected + ", got " + type_name(value));
-    };
-    auto numbers = [&](std::size_t count, const char* expected) {
-        if (!value.is_array() || value.size() != count) return fail(expected);
-        std::string out;
-        for (const auto& item : value) {
-            if (!item.is_number()) return fail(expected);
-            out += (out.empty() ? "" : ",") + number_text(item);
+// The keys of one object of a list ("soft_bodies", "rigid_bodies", "springs"), each read into
+// `def` (set_key checks it); an error names the file and line, the thing and the key.
+template <class D>
+void read_keys(const json& element, KeyOwner owner, D& def, const std::string& what, const std::string& origin,
+               const std::string& text, std::size_t at, std::initializer_list<std::string_view> skip) {
+    for (const auto& [key, value] : element.items()) {
+        if (std::find(skip.begin(), skip.end(), key) != skip.end()) continue;
+        const std::string line = where_after(origin, text, at, key) + ": ";
+        const KeyInfo* info = find_key(owner, key);
+        KeyValue read;
+        try {
+            if (!info) {
+                std::string message = "unknown key '" + printable(key) + "'";
+                if (auto hint = closest_key(owner, key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
+                else if (owner == KeyOwner::SoftBody && find_key(KeyOwner::World, key)) message = "'" + printable(key) + "' is a world key: set it in \"world\"";
+                throw InputError(message);
+            }
+            read = key_value(*info, value);
+        } catch (const InputError& e) {
+            throw InputError(line + what + ": " + e.what());
         }
-        return out;
-    };
-    switch (info.type) {
-        case RigidKeyType::Number:
-        case RigidKeyType::PositiveNumber:
-            if (!value.is_number()) return fail("a number");
-            return number_text(value);
-        case RigidKeyType::Vec3: return numbers(3, "an array of three numbers [x, y, z]");
-        case RigidKeyType::Quat: return numbers(4, "an array of four numbers [w, x, y, z]");
-        case RigidKeyType::Bool:
-            if (!value.is_boolean()) return fail("true or false");
-            return value.get<bool>() ? "true" : "false";
-        case RigidKeyType::Shape:
-        case RigidKeyType::Text:
-            if (!value.is_string()) return fail("a string");
-            return value.get<std::string>();
+        try {
+            set_key(def, *info, read);  // says whose key it is itself
+        } catch (const InputError& e) {
+            throw InputError(line + e.what());
+        }
     }
-    return {};
 }
 
-// A rigid body's key as JSON, straight from its field (doubles written to full precision), or
-// null when the key is not set.
-json rigid_value_json(const RigidBodyDef& def, std::string_view key) {
-    const auto vec = [](const Vec3d& v) { return json::array({v.x, v.y, v.z}); };
-    if (key == "shape") return std::string(to_string(def.shape));
-    if (key == "size") return def.size ? vec(*def.size) : json();
-    if (key == "radius") return def.radius ? json(*def.radius) : json();
-    if (key == "height") return def.height ? json(*def.height) : json();
-    if (key == "mesh") return def.mesh.empty() ? json() : json(def.mesh);
-    if (key == "scale") return def.shape == ShapeKind::Mesh || def.scale != 1.0 ? json(def.scale) : json();  // set on any shape: kept
-    if (key == "mass") return def.mass ? json(*def.mass) : json();
-    if (key == "density") return def.density ? json(*def.density) : json();
-    if (key == "position") return def.position ? vec(*def.position) : json();
-    if (key == "orientation") return json::array({def.orientation.w, def.orientation.x, def.orientation.y, def.orientation.z});
-    if (key == "velocity") return vec(def.velocity);
-    if (key == "angular_velocity") return vec(def.angular_velocity);
-    if (key == "fixed") return def.fixed;
-    if (key == "restitution") return def.restitution ? json(*def.restitution) : json();
-    if (key == "friction") return def.friction ? json(*def.friction) : json();
-    if (key == "drag_coefficient") return def.drag_coefficient;
-    if (key == "rolling_resistance") return def.rolling_resistance;
-    if (key == "color") return def.color ? vec(*def.color) : json();
-    return json();  // "rotation": kept as the orientation
-}
-
-RigidBodyDef parse_rigid_body(const json& element, const std::string& origin, const std::string& text,
-                              std::size_t at) {
-    if (!element.is_object()) throw InputError(origin + ":" + std::to_string(line_of_offset(text, at)) + ": each of \"rigid_bodies\" must be an object {\"name\": ..., \"shape\": ...}");
+RigidBodyDef parse_rigid_body(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
+    const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
+    if (!element.is_object()) throw InputError(line + ": each of \"rigid_bodies\" must be an object {\"name\": ..., \"shape\": ...}");
     RigidBodyDef def;
     if (!element.contains("name") || !element["name"].is_string() || element["name"].get<std::string>().empty()) {
-        throw InputError(origin + ":" + std::to_string(line_of_offset(text, at)) + ": a rigid body needs a \"name\" (a string)");
+        throw InputError(line + ": a rigid body needs a \"name\" (a string)");
     }
     def.name = element["name"].get<std::string>();
-    // The shape first: the keys that follow are checked against it.
-    if (element.contains("shape")) {
-        try {
-            set_rigid_key(def, "shape", rigid_value_text(def, *find_rigid_key("shape"), element["shape"]));
-        } catch (const InputError& e) {
-            throw InputError(where_after(origin, text, at, "shape") + ": " + e.what());
-        }
-    }
+    const std::string what = "rigid body '" + printable(def.name) + "'";
     if (element.contains("orientation") && element.contains("rotation")) {
-        throw InputError(where_after(origin, text, at, "rotation") + ": rigid body '" + printable(def.name) +
-                         "': give 'orientation' or 'rotation', not both");
+        throw InputError(where_after(origin, text, at, "rotation") + ": " + what + ": give 'orientation' or 'rotation', not both");
     }
-    for (const auto& [key, value] : element.items()) {
-        if (key == "name" || key == "shape") continue;
-        const RigidKeyInfo* info = find_rigid_key(key);
-        try {
-            if (!info) set_rigid_key(def, key, "");  // refused, with the list of keys
-            set_rigid_key(def, key, rigid_value_text(def, *info, value));
-        } catch (const InputError& e) {
-            throw InputError(where_after(origin, text, at, key) + ": " + e.what());
-        }
+    read_keys(element, KeyOwner::RigidBody, def, what, origin, text, at, {"name"});
+    def.mesh = relative_to(origin, def.mesh);
+    return def;
+}
+
+SoftBodyDef parse_soft_body(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
+    const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
+    if (!element.is_object() || !element.contains("name") || !element["name"].is_string() || element["name"].get<std::string>().empty()) {
+        throw InputError(line + ": each of \"soft_bodies\" must be an object with a \"name\" and a \"mesh\"");
+    }
+    SoftBodyDef def;
+    def.name = element["name"].get<std::string>();
+    const std::string what = "soft body '" + printable(def.name) + "'";
+    read_keys(element, KeyOwner::SoftBody, def, what, origin, text, at, {"name"});
+    if (def.mesh.empty()) throw InputError(line + ": " + what + " needs a \"mesh\"");
+    if (element.contains("position") && element.contains("init_height")) {
+        throw InputError(where_after(origin, text, at, "position") + ": " + what + ": give 'position' or 'init_height', not both");
     }
     def.mesh = relative_to(origin, def.mesh);
+    fit_unless_given(element, def);
     return def;
 }
 
@@ -286,25 +267,22 @@ SpringEndDef parse_spring_end(const json& value, const std::string& where, const
     return end;
 }
 
-SpringDef parse_spring(const json& element, const std::string& where) {
+SpringDef parse_spring(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
+    const std::string where = origin + ":" + std::to_string(line_of_offset(text, at));
     if (!element.is_object()) throw InputError(where + ": each of \"springs\" must be an object {\"a\": ..., \"b\": ..., \"stiffness\": k}");
     SpringDef def;
-    const auto number = [&](const std::string& key, const json& v, double max) {
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0 || v.get<double>() > max) {
-            throw InputError(where + ": spring key '" + key + "' must be a number from 0 to " + number_text(json(max)));
+    if (element.contains("name")) {
+        if (!element["name"].is_string() || element["name"].get<std::string>().empty()) {
+            throw InputError(where + ": a spring's \"name\" must be a non-empty string");
         }
-        return v.get<double>();
-    };
-    for (const auto& [key, value] : element.items()) {
-        if (key == "a") def.a = parse_spring_end(value, where, "a");
-        else if (key == "b") def.b = parse_spring_end(value, where, "b");
-        else if (key == "stiffness") def.stiffness = number(key, value, 1e7);
-        else if (key == "damping") def.damping = number(key, value, 1e6);
-        else if (key == "rest_length") def.rest_length = number(key, value, 1e6);
-        else throw InputError(where + ": unknown spring key '" + printable(key) + "' (a, b, stiffness, damping, rest_length)");
+        def.name = element["name"].get<std::string>();
     }
+    const std::string what = def.name.empty() ? std::string("spring") : "spring '" + printable(def.name) + "'";
+    if (element.contains("a")) def.a = parse_spring_end(element["a"], where, "a");
+    if (element.contains("b")) def.b = parse_spring_end(element["b"], where, "b");
+    read_keys(element, KeyOwner::Spring, def, what, origin, text, at, {"name", "a", "b"});
     if (!element.contains("a") || !element.contains("b")) throw InputError(where + ": a spring needs both ends, \"a\" and \"b\"");
-    if (!def.stiffness) throw InputError(where + ": a spring needs \"stiffness\" (N/m)");
+    if (!element.contains("stiffness")) throw InputError(where + ": a spring needs \"stiffness\" (N/m)");
     return def;
 }
 
@@ -341,8 +319,8 @@ void check_expect_names(const Scene& scene, const std::string& where) {
     const auto rigid = [&](const std::string& name) {
         return std::any_of(scene.rigid_bodies.begin(), scene.rigid_bodies.end(), [&](const RigidBodyDef& b) { return b.name == name; });
     };
-    const std::vector<std::string> names = body_names(scene);
-    const bool exists = std::find(names.begin(), names.end(), expect.body) != names.end();
+    const bool exists = std::any_of(scene.soft_bodies.begin(), scene.soft_bodies.end(), [&](const SoftBodyDef& b) { return b.name == expect.body; }) ||
+                        rigid(expect.body);
     const std::string what = where + ": key 'expect': ";
     if (!exists) throw InputError(what + "there is no body named '" + printable(expect.body) + "'");
     if (form.rigid_body && !rigid(expect.body)) throw InputError(what + "'" + printable(expect.body) + "' must be a rigid body for '" + expect.kind + "'");
@@ -352,7 +330,7 @@ void check_expect_names(const Scene& scene, const std::string& where) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& origin, const Scene& base) {
+Scene parse_scene(const std::string& text, const std::string& origin) {
     if (text.size() > kMaxSceneBytes) {
         throw InputError(origin + ": too large for a scene file (" + std::to_string(text.size()) + " bytes)");
     }
@@ -387,8 +365,12 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
     }
     if (!root.is_object()) throw InputError(origin + ": a scene file must be a JSON object {\"key\": value, ...}");
 
-    Scene scene = base;
-    Params& params = scene.params;
+    Scene scene;
+    // The old flat form: the world's keys at the top level, and with a "mesh" the keys of the
+    // soft body "body" too (scene_io.h).
+    SoftBodyDef flat;
+    flat.name = "body";
+    bool flat_world = false;
     for (const auto& [key, value] : root.items()) {
         if (key == "rigid_bodies" || key == "soft_bodies" || key == "springs") {
             if (!value.is_array()) throw InputError(where(origin, text, key) + ": \"" + key + "\" must be an array");
@@ -404,172 +386,124 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
             scene.expect = parse_expect(value, where(origin, text, key));
             continue;
         }
-        const ParamInfo* info = find_param(key);
-        if (!info) {
+        if (key == "world") {
+            if (!value.is_object()) throw InputError(where(origin, text, key) + ": \"world\" must be an object {\"key\": value, ...}");
+            const std::size_t at = text.find("\"world\"");
+            read_keys(value, KeyOwner::World, scene.settings, "world", origin, text, at == std::string::npos ? 0 : at, {});
+            continue;
+        }
+        const KeyInfo* world_key = find_key(KeyOwner::World, key);
+        const KeyInfo* body_key = find_key(KeyOwner::SoftBody, key);
+        if (!world_key && !body_key) {
             std::string message = where(origin, text, key) + ": unknown key '" + printable(key) + "'";
-            if (auto hint = closest_key(key); !hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
-            else message += " (besides the keys of params: soft_bodies, rigid_bodies, springs, title, text, expect)";
+            std::string_view hint = closest_key(KeyOwner::World, key);
+            if (hint.empty()) hint = closest_key(KeyOwner::SoftBody, key);
+            if (!hint.empty()) message += " (did you mean '" + std::string(hint) + "'?)";
+            else message += " (a scene holds world, soft_bodies, rigid_bodies, springs, title, text and expect)";
             throw InputError(message);
         }
         try {
-            set_param(params, key, value_text(*info, value));
+            if (world_key) {
+                flat_world = true;
+                set_key(scene.settings, *world_key, key_value(*world_key, value));
+            } else {
+                set_key(flat, *body_key, key_value(*body_key, value));
+            }
         } catch (const InputError& e) {
             throw InputError(where(origin, text, key) + ": " + e.what());
         }
     }
-    if (root.contains("position") && root.contains("init_height")) {
-        throw InputError(where(origin, text, "position") + ": soft body 'body': give 'position' or 'init_height', not both");
+    if (flat_world && root.contains("world")) {
+        throw InputError(where(origin, text, "world") + ": the world's keys go in \"world\" or at the top level (the old form), not both");
     }
     if (root.contains("mesh")) {
-        params.mesh = relative_to(origin, params.mesh);
-        fit_unless_given(root, params);
+        if (root.contains("position") && root.contains("init_height")) {
+            throw InputError(where(origin, text, "position") + ": soft body 'body': give 'position' or 'init_height', not both");
+        }
+        flat.mesh = relative_to(origin, flat.mesh);
+        fit_unless_given(root, flat);
+        scene.soft_bodies.push_back(std::move(flat));
     }
-
     if (root.contains("soft_bodies")) {
-        scene.soft_bodies.clear();
         for (const json& element : root["soft_bodies"]) {
-            const std::size_t at = element_offset(text, "soft_bodies", element);
-            const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
-            if (!element.is_object() || !element.contains("name") || !element["name"].is_string() ||
-                element["name"].get<std::string>().empty()) {
-                throw InputError(line + ": each of \"soft_bodies\" must be an object with a \"name\" and a \"mesh\"");
-            }
-            SoftBodyScene body;
-            body.name = element["name"].get<std::string>();
-            for (const auto& [key, value] : element.items()) {
-                if (key == "name") continue;
-                const ParamInfo* info = find_param(key);
-                if (!info || info->scope != ParamScope::Body) {
-                    throw InputError(where_after(origin, text, at, key) + ": soft body '" + printable(body.name) + "': '" +
-                                     printable(key) + "' is " + (info ? "a world key: set it at the top level" : "not a key of a soft body"));
-                }
-                try {
-                    set_param(body.params, key, value_text(*info, value));
-                } catch (const InputError& e) {
-                    throw InputError(where_after(origin, text, at, key) + ": soft body '" + printable(body.name) + "': " + e.what());
-                }
-            }
-            if (body.params.mesh.empty()) throw InputError(line + ": soft body '" + printable(body.name) + "' needs a \"mesh\"");
-            if (element.contains("position") && element.contains("init_height")) {
-                throw InputError(where_after(origin, text, at, "position") + ": soft body '" + printable(body.name) +
-                                 "': give 'position' or 'init_height', not both");
-            }
-            body.params.mesh = relative_to(origin, body.params.mesh);
-            fit_unless_given(element, body.params);
-            scene.soft_bodies.push_back(std::move(body));
+            scene.soft_bodies.push_back(parse_soft_body(element, origin, text, element_offset(text, "soft_bodies", element)));
         }
     }
     if (root.contains("rigid_bodies")) {
-        scene.rigid_bodies.clear();
         for (const json& element : root["rigid_bodies"]) {
             scene.rigid_bodies.push_back(parse_rigid_body(element, origin, text, element_offset(text, "rigid_bodies", element)));
         }
     }
     if (root.contains("springs")) {
-        scene.springs.clear();
         std::size_t from = text.find("\"springs\"");
         for (const json& element : root["springs"]) {
             const std::size_t at = text.find("{", from == std::string::npos ? 0 : from + 1);
             from = at == std::string::npos ? from : at;
-            scene.springs.push_back(parse_spring(element, origin + ":" + std::to_string(line_of_offset(text, from))));
+            scene.springs.push_back(parse_spring(element, origin, text, from == std::string::npos ? 0 : from));
             // Past this spring's ends ("a": {...}, "b": {...}) to the next spring's brace.
             for (int skip = 0; skip < 2 && from != std::string::npos; ++skip) from = text.find("}", from + 1);
         }
     }
 
-    // Names: every body has one, and no two share it.
-    std::vector<std::string> names = body_names(scene);
-    std::sort(names.begin(), names.end());
-    if (const auto twin = std::adjacent_find(names.begin(), names.end()); twin != names.end()) {
-        throw InputError(where(origin, text, *twin) + ": two bodies are named '" + printable(*twin) +
-                         "' (the soft body of the flat keys is 'body'); names must be unique");
+    // Names: every body has one, a spring may, and no two share one.
+    std::vector<std::string> all = names(scene);
+    std::sort(all.begin(), all.end());
+    if (const auto twin = std::adjacent_find(all.begin(), all.end()); twin != all.end()) {
+        throw InputError(where(origin, text, *twin) + ": two things are named '" + printable(*twin) +
+                         "' (the soft body of the old flat keys is 'body'); names must be unique");
     }
     if (scene.expect) check_expect_names(scene, where(origin, text, "expect"));
     return scene;
 }
 
-void fit_brought_mesh(Params& params) {
-    params.scale = 0.0f;  // "auto"
-    params.up_axis = "y";
-    params.rotation = {};
+void fit_brought_mesh(SoftBodyDef& def) {
+    def.scale = 0.0f;  // "auto"
+    def.up_axis = "y";
+    def.rotation = {};
 }
 
-Scene load_scene(const std::string& path, const Scene& base) {
-    if (is_generated(path)) return generated_scene(path, base);  // "pile:100", "cloud:2500": made, not read
-    return parse_scene(read_text_file(path, kMaxSceneBytes, "scene file"), path, base);
-}
-
-std::vector<std::string> body_names(const Scene& scene) {
-    std::vector<std::string> names;
-    if (!scene.params.mesh.empty()) names.push_back("body");
-    for (const auto& body : scene.soft_bodies) names.push_back(body.name);
-    for (const auto& body : scene.rigid_bodies) names.push_back(body.name);
-    return names;
+Scene load_scene(const std::string& path) {
+    if (is_generated(path)) return generated_scene(path);  // "pile:100", "cloud:2500": made, not read
+    return parse_scene(read_text_file(path, kMaxSceneBytes, "scene file"), path);
 }
 
 void set_scene_key(Scene& scene, std::string_view key, std::string_view text) {
-    const auto dot = key.find('.');
-    if (dot == std::string_view::npos) {
-        set_param(scene.params, key, text);
+    // A mesh for a scene without a soft body: the body of the old flat keys, named "body".
+    if (key == "mesh" && scene.soft_bodies.empty()) {
+        SoftBodyDef body;
+        body.name = "body";
+        set_key(body, *find_key(KeyOwner::SoftBody, "mesh"), parse_key_text(*find_key(KeyOwner::SoftBody, "mesh"), text));
+        for (const std::string& name : names(scene)) {
+            if (name == body.name) throw InputError("mesh: the new soft body would be named 'body', which is taken");
+        }
+        scene.soft_bodies.push_back(std::move(body));
         return;
     }
-    const std::string name(key.substr(0, dot));
-    const std::string_view sub = key.substr(dot + 1);
-    const auto body_key = [&](Params& params) {
-        const ParamInfo* info = find_param(sub);
-        if (info && info->scope == ParamScope::World) {
-            throw InputError("'" + std::string(sub) + "' is a world key: set it as --set " + std::string(sub) + "=VALUE");
-        }
-        set_param(params, sub, text);
-    };
-    if (name == "body" && !scene.params.mesh.empty()) return body_key(scene.params);
-    for (SoftBodyScene& body : scene.soft_bodies) {
-        if (body.name == name) return body_key(body.params);
-    }
-    for (RigidBodyDef& body : scene.rigid_bodies) {
-        if (body.name == name) return set_rigid_key(body, sub, text);
-    }
-    std::string known;
-    for (const std::string& n : body_names(scene)) known += (known.empty() ? "" : ", ") + n;
-    throw InputError("'" + printable(key) + "': there is no body named '" + printable(name) + "'" +
-                     (known.empty() ? std::string(" (the scene has no bodies)") : " (bodies: " + known + ")"));
-}
-
-WorldDef make_world_def(const Scene& scene) {
-    WorldDef def;
-    def.params = scene.params;
-    if (!scene.params.mesh.empty()) def.soft_bodies.push_back(SoftBodyDef{"body", scene.params, open_mesh(scene.params.mesh)});
-    for (const SoftBodyScene& body : scene.soft_bodies) {
-        Mesh mesh;
-        try {
-            mesh = open_mesh(body.params.mesh);
-        } catch (const InputError& e) {
-            throw InputError("soft body '" + body.name + "': " + e.what());
-        }
-        def.soft_bodies.push_back(SoftBodyDef{body.name, body.params, std::move(mesh)});
-    }
-    for (const RigidBodyDef& body : scene.rigid_bodies) def.rigid_bodies.push_back(make_rigid_body(body));
-    def.springs = scene.springs;
-    return def;
+    const ThingNames names = thing_names(scene);
+    const std::vector<KeyTarget> targets = resolve_key(key, names);
+    const KeyValue value = parse_key_text(targets.front(), names, text);
+    for (const KeyTarget& t : targets) set_key(scene, t, value);
 }
 
 std::string scene_to_json(const Scene& scene) {
-    const auto flat = [](const Params& params, bool body_only) {
+    // Each key a definition holds that is set (unset optional ones are left out), by the table.
+    const auto keys = [](const auto& def, KeyOwner owner) {
         json object = json::object();
-        for (const auto& info : param_table()) {
-            if (body_only && info.scope != ParamScope::Body) continue;
-            if (info.type == ParamType::String && param_text(params, info.key).empty()) continue;
-            if (info.type == ParamType::OptionalVec3 && param_text(params, info.key) == "none") continue;
-            if (info.key == "init_height" && params.position) continue;  // the position places the body
-            object[std::string(info.key)] = value_json(params, info);
+        for (const KeyInfo* info : keys_of(owner)) {
+            if (info->alias) continue;
+            json value = key_json(*info, get_key(def, *info));
+            if (value.is_null() || (info->type == KeyType::Path && value.get<std::string>().empty())) continue;
+            object[std::string(info->name)] = std::move(value);
         }
         return object;
     };
-    json root = flat(scene.params, false);
+    json root = json::object();
+    root["world"] = keys(scene.settings, KeyOwner::World);
     if (!scene.soft_bodies.empty()) {
         json list = json::array();
-        for (const SoftBodyScene& body : scene.soft_bodies) {
-            json object = flat(body.params, true);
+        for (const SoftBodyDef& body : scene.soft_bodies) {
+            json object = keys(body, KeyOwner::SoftBody);
+            if (body.position) object.erase("init_height");  // the position places the body
             object["name"] = body.name;
             list.push_back(object);
         }
@@ -578,12 +512,9 @@ std::string scene_to_json(const Scene& scene) {
     if (!scene.rigid_bodies.empty()) {
         json list = json::array();
         for (const RigidBodyDef& body : scene.rigid_bodies) {
-            json object = json::object();
+            json object = keys(body, KeyOwner::RigidBody);
+            if (body.shape != ShapeKind::Mesh && body.scale == 1.0) object.erase("scale");  // a mesh's key
             object["name"] = body.name;
-            for (const RigidKeyInfo& info : rigid_key_table()) {
-                json value = rigid_value_json(body, info.key);
-                if (!value.is_null()) object[std::string(info.key)] = std::move(value);
-            }
             list.push_back(object);
         }
         root["rigid_bodies"] = list;
@@ -598,9 +529,10 @@ std::string scene_to_json(const Scene& scene) {
             return object;
         };
         for (const SpringDef& spring : scene.springs) {
-            json object = {{"a", end_json(spring.a)}, {"b", end_json(spring.b)}, {"damping", spring.damping}};
-            if (spring.stiffness) object["stiffness"] = *spring.stiffness;
-            if (spring.rest_length) object["rest_length"] = *spring.rest_length;
+            json object = keys(spring, KeyOwner::Spring);
+            object["a"] = end_json(spring.a);
+            object["b"] = end_json(spring.b);
+            if (!spring.name.empty()) object["name"] = spring.name;
             list.push_back(object);
         }
         root["springs"] = list;
@@ -617,7 +549,7 @@ std::string scene_to_json(const Scene& scene) {
         return root.dump(2) + "\n";
     } catch (const json::type_error&) {
         // JSON text is UTF-8; a path or name in another encoding cannot be written into it faithfully.
-        throw InputError("parameter 'mesh': a path or name in the scene is not valid UTF-8, which a scene file cannot "
+        throw InputError("key 'mesh': a path or name in the scene is not valid UTF-8, which a scene file cannot "
                          "hold; rename the file or the body");
     }
 }
@@ -640,8 +572,7 @@ void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite
         const fs::path to = fs::proximate(fs::absolute(mesh, error), fs::absolute(folder, error), error);
         if (!error && !to.empty()) mesh = to.string();
     };
-    relative(saved.params.mesh);
-    for (SoftBodyScene& body : saved.soft_bodies) relative(body.params.mesh);
+    for (SoftBodyDef& body : saved.soft_bodies) relative(body.mesh);
     for (RigidBodyDef& body : saved.rigid_bodies) relative(body.mesh);
     const std::string text = scene_to_json(saved);  // before anything touches the disk
 

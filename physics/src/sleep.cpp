@@ -91,7 +91,7 @@ bool World::wake_touched_islands() {
 void World::update_sleep() {
     const std::size_t n = rigid_.size();
     if (n == 0) return;
-    const double dt = params_.dt;
+    const double dt = settings_.dt;
     // Bodies still being pushed out of an overlap deeper than a loaded contact stands: their
     // deepest contact deeper than kSleepDepth and shallower than a tick ago by kSleepDepthShrink.
     std::vector<double> deepest(n, 0.0);
@@ -117,7 +117,7 @@ void World::update_sleep() {
     });
     bool any_rested = false;
     for (std::size_t b = 0; b < n && !any_rested; ++b) any_rested = !rigid_[b].fixed && !asleep_[b] && sleep_.rest_time[b] >= kTimeToSleep;
-    if (!params_.sleeping || !any_rested) return;
+    if (!settings_.sleeping || !any_rested) return;
 
     // The islands of the awake bodies, what leans on something fixed, and what is held.
     Islands islands(n);

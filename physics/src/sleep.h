@@ -28,7 +28,7 @@
 //     or a soft body's triangle comes within reach of one (the tick it happens, before its
 //     contacts are solved: they are found again with the island awake),
 //   - the app grabs one of its bodies (World::set_grab) or sets its material,
-//   - any key changes (set_params, set_body_params): every island wakes.
+//   - any key changes (set_settings, set_def): every island wakes.
 // With `sleeping` false nothing falls asleep (the rest times still count, for the inspector).
 //
 // Nothing here depends on the thread count, and an island whose bodies never come to rest never

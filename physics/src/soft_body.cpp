@@ -34,7 +34,7 @@ Vec3 turn_up(const std::string& up, Vec3 v) {
 // choice while the budget is the same (a reset does not redo it).
 void choose_particles(SoftBody& body) {
     const std::size_t full = body.mesh.particle_count();
-    const std::size_t budget = body.params.max_particles == 0 ? kMaxParticles : std::size_t(body.params.max_particles);
+    const std::size_t budget = body.def.max_particles == 0 ? kMaxParticles : std::size_t(body.def.max_particles);
     if (full <= budget) {
         body.reduced.reset();
         body.reduced_budget = 0;
@@ -54,14 +54,15 @@ void choose_particles(SoftBody& body) {
 }  // namespace
 
 std::string particle_cap_note(const SoftBody& body) {
-    if (body.params.max_particles != 0 || !body.reduced) return "";
+    if (body.def.max_particles != 0 || !body.reduced) return "";
     return body.mesh.source + ": max_particles=all is capped at " + std::to_string(kMaxParticles) + " particles: its " +
            std::to_string(body.mesh.particle_count()) + " distinct vertices run on " + std::to_string(body.particle_count()) +
            " (--set max_particles=N, 4 to " + std::to_string(kMaxParticles) + ", for fewer)";
 }
 
 void build_particles(SoftBody& body) {
-    const Params& p = body.params;
+    body.built = body.def;
+    const SoftBodyDef& p = body.def;
     choose_particles(body);
     const std::vector<Vec3>& source = body.reduced ? body.reduced->positions : body.mesh.positions;
     const std::size_t n = source.size();
@@ -164,7 +165,7 @@ void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned) {
 }
 
 void apply_body_keys(SoftBody& body) {
-    const Params& p = body.params;
+    const SoftBodyDef& p = body.def;
     // r = 1 (and every value exactly the key's) unless the body is reduced.
     const float r = body.reduced ? float(body.mesh.particle_count()) / float(body.particle_count()) : 1.0f;
     body.stiffness = body.reduced ? p.stiffness * r : p.stiffness;

@@ -216,12 +216,12 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
 }
 
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-                        const Params& world, double dt, ThreadPool& pool) {
+                        const WorldSettings& world, double dt, ThreadPool& pool) {
     rigid_pairs_.clear();
     if (surfaces_.size() != bodies.size()) build(bodies);
     bool wanted = false, any_faces = false;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-        wanted = wanted || bodies[b].params.self_collision;
+        wanted = wanted || bodies[b].def.self_collision;
         any_faces = any_faces || !surfaces_[b].triangles.empty();
     }
     const bool rigid_near = any_faces && !rigid.empty();
@@ -264,7 +264,7 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     // Which pairs of bodies can meet at all; each body's tree refit only when some can, each
     // body's on a thread of the pool (a tree is its body's alone).
     const auto meets = [&](std::size_t a, std::size_t b) {
-        if (a == b) return bodies[a].params.self_collision && !surfaces_[a].triangles.empty();
+        if (a == b) return bodies[a].def.self_collision && !surfaces_[a].triangles.empty();
         return whole[a].overlaps(whole[b]);
     };
     // The last tick's pairs again, when no particle can reach anything this tick that the
@@ -664,7 +664,7 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
 }
 
 void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
-                         const Params& world, float h) {
+                         const WorldSettings& world, float h) {
     touching_.clear();
     if (active_.empty() && rigid_active_.empty()) return;
     const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;

@@ -51,7 +51,7 @@
 
 #include "bvh.h"
 #include "physics/contact.h"
-#include "physics/params.h"
+#include "physics/defs.h"
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 #include "physics/thread_pool.h"
@@ -74,7 +74,7 @@ public:
     // The particles' queries run on the pool's threads, each chunk of particles into a list
     // of its own, joined in order: the same pairs in the same order at any thread count.
     bool find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-              const Params& world, double dt, ThreadPool& pool);
+              const WorldSettings& world, double dt, ThreadPool& pool);
     bool empty() const { return pairs_.empty(); }
     // Before the integrator moves the particles: each kept pair's nearest point and normal.
     // (Each particle's pairs on the pool's threads, in spans of whole particles, joined in order.)
@@ -82,7 +82,7 @@ public:
                        ThreadPool& pool);
     // After the integrator's free step of h (and the rigid contacts): the impulses, on the
     // particles and on the rigid bodies' state.
-    void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const Params& world,
+    void solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state, const WorldSettings& world,
                float h);
     // The contacts of the last substep that pushed (lambda > 0), for display and the tests.
     const std::vector<SoftContact>& contacts() const { return touching_; }
@@ -151,7 +151,7 @@ private:
         std::uint32_t slot[3] = {0, 0, 0};  // solve's slots of the triangle's corners
     };
     void find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-                    const Params& world, double dt);
+                    const WorldSettings& world, double dt);
     std::vector<RigidPair> rigid_pairs_;
     std::vector<RigidActive> rigid_active_;
     std::vector<Vec3d> dP_, dL_;     // per rigid body: what this substep's impulses added

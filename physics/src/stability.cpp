@@ -70,7 +70,7 @@ double growth(Integrator integrator, double h, double lambda_max, double k, doub
 }  // namespace
 
 // One mode x'' = -k lambda x - c lambda x' under the world's integrator and step.
-Stability mode_stability(double lambda, double k, double c, const Params& world, int substeps) {
+Stability mode_stability(double lambda, double k, double c, const WorldSettings& world, int substeps) {
     Stability s;
     const double dt = world.dt;
     s.omega_max = std::sqrt(k * lambda);
@@ -106,7 +106,7 @@ Stability mode_stability(double lambda, double k, double c, const Params& world,
     return s;
 }
 
-Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps) {
+Stability soft_body_stability(const SoftBody& body, const WorldSettings& world, int substeps) {
     const double n = static_cast<double>(body.particle_count());
     const double lambda = n >= 2.0 ? n / double(body.mass) : 0.0;  // lambda_max of M^-1 G, see above
     return mode_stability(lambda, body.stiffness, body.damping, world, substeps);
@@ -140,8 +140,8 @@ double World::link_inverse_mass(const Link& link) const {
 Stability World::stability() const {
     Stability worst;
     worst.substeps = substeps_;
-    worst.h = params_.dt / substeps_;
-    worst.limit = params_.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
+    worst.h = settings_.dt / substeps_;
+    worst.limit = settings_.integrator == Integrator::RK4 ? 2.0 * std::sqrt(2.0) : 2.0;
     int needed = 1;
     bool first = true;
     const auto take = [&](const Stability& s) {
@@ -150,8 +150,8 @@ Stability World::stability() const {
         if (first || s.growth > worst.growth) worst = s;
         first = false;
     };
-    for (const SoftBody& body : soft_) take(soft_body_stability(body, params_, substeps_));
-    for (const Link& link : links_) take(mode_stability(link_inverse_mass(link), link.k, link.c, params_, substeps_));
+    for (const SoftBody& body : soft_) take(soft_body_stability(body, settings_, substeps_));
+    for (const Link& link : links_) take(mode_stability(link_inverse_mass(link), link.k, link.c, settings_, substeps_));
     worst.substeps_needed = needed;
     return worst;
 }

@@ -5,6 +5,6 @@
 
 namespace softbody {
 
-Stability soft_body_stability(const SoftBody& body, const Params& world, int substeps);
+Stability soft_body_stability(const SoftBody& body, const WorldSettings& world, int substeps);
 
 }  // namespace softbody

@@ -31,286 +31,9 @@ void copy(const Vec3Array& from, Vec3Array& to) {
     to.z = from.z;
 }
 
-void check_pins(const Params& params, const Mesh& mesh) {
-    for (std::uint32_t vertex : params.pinned) {
-        if (vertex >= mesh.vertex_to_particle.size()) {
-            throw InputError("parameter 'pinned': vertex " + std::to_string(vertex) + " does not exist (the mesh has " +
-                             std::to_string(mesh.vertex_to_particle.size()) + " vertices, numbered from 0)");
-        }
-    }
-}
-
-WorldDef one_body(const Params& params, Mesh mesh) {
-    WorldDef def;
-    def.params = params;
-    def.soft_bodies.push_back(SoftBodyDef{"body", params, std::move(mesh)});
-    return def;
-}
-
 }  // namespace
 
-World::World(WorldDef def, WorldOptions options)
-    : params_(def.params),
-      rigid_contact_scratch_(std::make_unique<RigidContactScratch>()),
-      solver_(std::make_unique<ContactSolver>()),
-      soft_contacts_(std::make_unique<SoftContacts>()),
-      reference_kernel_(options.reference_kernel) {
-    validate(params_);
-    pool_ = std::make_unique<ThreadPool>(std::max(1, options.threads));
-    for (SoftBodyDef& d : def.soft_bodies) {
-        validate(d.params);
-        if (d.mesh.positions.empty()) throw InputError(d.mesh.source + ": the mesh has no vertices");
-        check_pins(d.params, d.mesh);
-        SoftBody body;
-        body.name = std::move(d.name);
-        body.params = std::move(d.params);
-        body.mesh = std::move(d.mesh);
-        body.kernel = std::make_unique<PairForceKernel>(*pool_);
-        soft_.push_back(std::move(body));
-    }
-    rigid_ = std::move(def.rigid_bodies);
-    for (const RigidBody& body : rigid_) {
-        notes_.insert(notes_.end(), body.notes.begin(), body.notes.end());
-        shapes_.push_back(collision_shape(body));
-    }
-    const std::size_t n = rigid_.size() * rigid::kStateSize;
-    for (auto* y : {&y_, &y_tick_prev_, &y_good_, &y_stage_, &k_[0], &k_[1], &k_[2], &k_[3]}) y->assign(n, 0.0);
-    link_force_on_rigid_.assign(rigid_.size(), {});
-    link_torque_on_rigid_.assign(rigid_.size(), {});
-    link_force_on_particles_.assign(soft_.size(), {});
-    build();
-    // What the loader set aside in each mesh file (a dangling normal index, ...): one line each.
-    for (const SoftBody& body : soft_) notes_.insert(notes_.end(), body.mesh.warnings.begin(), body.mesh.warnings.end());
-    // A body that asked for every vertex and got fewer: the cap said, not kept quiet.
-    for (const SoftBody& body : soft_) {
-        if (std::string note = particle_cap_note(body); !note.empty()) notes_.push_back(std::move(note));
-    }
-    resolve_links(def.springs);
-    update_substeps();  // the links' springs count toward the step's stability
-}
-
-World::World(const Params& params, Mesh mesh, WorldOptions options) : World(one_body(params, std::move(mesh)), options) {}
-
-World::~World() = default;
-
-void World::build() {
-    for (SoftBody& body : soft_) build_particles(body);
-    soft_contacts_->build(soft_);
-    soft_touching_ = false;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        std::copy(rigid_[b].initial.begin(), rigid_[b].initial.end(), y_.begin() + std::ptrdiff_t(b * rigid::kStateSize));
-    }
-    y_tick_prev_ = y_;
-    contacts_.clear();
-    previous_contacts_.clear();
-    reset_sleep();
-    ticks_ = 0;
-    status_ = Status::Ok;
-    divergence_.clear();
-    grab_.reset();
-    energy_baseline_stale_ = true;
-    update_substeps();
-}
-
-void World::reset() { build(); }
-
 const std::vector<SoftContact>& World::soft_contacts() const { return soft_contacts_->contacts(); }
-
-WorldSnapshot World::snapshot() const {
-    WorldSnapshot out;
-    for (const SoftBody& body : soft_) {
-        out.soft.push_back({body.x, body.v, body.verlet_step, body.x_tick_prev, body.inv_mass, body.verlet_h});
-    }
-    out.rigid = y_;
-    out.rigid_tick_prev = y_tick_prev_;
-    out.contacts = contacts_;
-    out.ticks = ticks_;
-    out.status = status_;
-    out.divergence = divergence_;
-    out.energy_baseline = energy_baseline_;
-    out.energy_scale = energy_scale_;
-    out.energy_baseline_stale = energy_baseline_stale_;
-    out.sleep = sleep_;
-    return out;
-}
-
-void World::restore(const WorldSnapshot& s, bool more_bodies) {
-    const bool fits = more_bodies ? s.soft.size() <= soft_.size() && s.rigid.size() <= y_.size()
-                                  : s.soft.size() == soft_.size() && s.rigid.size() == y_.size();
-    if (!fits || s.rigid.size() != s.rigid_tick_prev.size()) throw std::invalid_argument("World::restore: a snapshot of another world");
-    for (std::size_t b = 0; b < s.soft.size(); ++b) {
-        SoftBody& body = soft_[b];
-        const WorldSnapshot::Soft& from = s.soft[b];
-        if (from.x.size() != body.particle_count()) throw std::invalid_argument("World::restore: a snapshot of another body");
-        body.x = from.x;
-        body.v = from.v;
-        body.verlet_step = from.verlet_step;
-        body.x_tick_prev = from.x_tick_prev;
-        body.inv_mass = from.inv_mass;
-        body.verlet_h = from.verlet_h;
-    }
-    std::copy(s.rigid.begin(), s.rigid.end(), y_.begin());
-    std::copy(s.rigid_tick_prev.begin(), s.rigid_tick_prev.end(), y_tick_prev_.begin());
-    if (more_bodies) {
-        contacts_.clear();  // the next tick finds them with the new bodies
-    } else {
-        contacts_ = s.contacts;
-    }
-    previous_contacts_.clear();
-    ticks_ = s.ticks;
-    status_ = s.status;
-    divergence_ = s.divergence;
-    energy_baseline_ = s.energy_baseline;
-    energy_scale_ = s.energy_scale;
-    energy_baseline_stale_ = s.energy_baseline_stale;
-    // Asleep as they were; bodies added since start awake.
-    if (s.sleep.island.size() != s.rigid.size() / rigid::kStateSize || s.sleep.rest_time.size() != s.sleep.island.size()) {
-        throw std::invalid_argument("World::restore: a snapshot of another world");
-    }
-    sleep_ = s.sleep;
-    sleep_.rest_time.resize(rigid_.size(), 0.0);
-    sleep_.island.resize(rigid_.size(), kAwake);
-    sleep_.deepest.resize(rigid_.size(), 0.0);
-    for (std::size_t b = 0; b < rigid_.size(); ++b) asleep_[b] = sleep_.island[b] != kAwake ? 1 : 0;
-}
-
-std::size_t WorldSnapshot::bytes() const {
-    std::size_t total = sizeof(*this);
-    for (const Soft& body : soft) {
-        total += sizeof(Soft) + body.inv_mass.size() * sizeof(float) +
-                 (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
-    }
-    return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size()) * sizeof(double) +
-           (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + sleep.island.size() * sizeof(std::uint32_t) +
-           divergence.size();
-}
-
-// Names to indices, each end checked, and the rest lengths measured where none is given.
-void World::resolve_links(const std::vector<SpringDef>& springs) {
-    for (std::size_t s = 0; s < springs.size(); ++s) {
-        const SpringDef& def = springs[s];
-        const std::string what = "spring " + std::to_string(s + 1);
-        if (!def.stiffness) throw InputError(what + ": needs 'stiffness' (N/m)");
-        if (!(*def.stiffness >= 0.0) || !(def.damping >= 0.0) || (def.rest_length && !(*def.rest_length >= 0.0))) {
-            throw InputError(what + ": stiffness, damping and rest_length must not be negative");
-        }
-        Link link;
-        link.k = *def.stiffness;
-        link.c = def.damping;
-        const auto resolve = [&](const SpringEndDef& end, const char* name) {
-            const std::string where = what + ", end '" + name + "'";
-            LinkEnd out;
-            if (end.body.empty()) {
-                if (end.vertex) throw InputError(where + ": a vertex needs a \"body\"");
-                if (!end.point) throw InputError(where + ": needs a \"body\" or a \"point\" fixed in the world");
-                out.kind = LinkEnd::Kind::World;
-                out.point = *end.point;
-                return out;
-            }
-            for (std::size_t b = 0; b < rigid_.size(); ++b) {
-                if (rigid_[b].name != end.body) continue;
-                if (end.vertex) throw InputError(where + ": rigid body '" + end.body + "' has no vertices; give a \"point\" in its axes");
-                out.kind = LinkEnd::Kind::Rigid;
-                out.body = std::uint32_t(b);
-                out.point = end.point.value_or(Vec3d{});
-                return out;
-            }
-            for (std::size_t b = 0; b < soft_.size(); ++b) {
-                if (soft_[b].name != end.body) continue;
-                if (end.point) throw InputError(where + ": soft body '" + end.body + "' is held at a \"vertex\", not a point");
-                if (!end.vertex) throw InputError(where + ": needs the \"vertex\" of soft body '" + end.body + "'");
-                const auto& map = soft_[b].mesh.vertex_to_particle;
-                if (*end.vertex < 0 || std::size_t(*end.vertex) >= map.size()) {
-                    throw InputError(where + ": vertex " + std::to_string(*end.vertex) + " does not exist (body '" +
-                                     end.body + "' has " + std::to_string(map.size()) + " vertices, numbered from 0)");
-                }
-                out.kind = LinkEnd::Kind::Soft;
-                out.body = std::uint32_t(b);
-                out.particle = particle_of_vertex(soft_[b], std::uint32_t(*end.vertex));
-                return out;
-            }
-            throw InputError(where + ": there is no body named '" + printable(end.body) + "'");
-        };
-        link.a = resolve(def.a, "a");
-        link.b = resolve(def.b, "b");
-        link.l0 = def.rest_length ? *def.rest_length : length(link_end_position(link.b) - link_end_position(link.a));
-        links_.push_back(link);
-    }
-}
-
-Vec3d World::link_end_position(const LinkEnd& end) const {
-    switch (end.kind) {
-        case LinkEnd::Kind::World: return end.point;
-        case LinkEnd::Kind::Rigid: {
-            const RigidMotion m = rigid_motion(end.body);
-            return m.x + m.R * end.point;
-        }
-        case LinkEnd::Kind::Soft: return Vec3d(soft_[end.body].x[end.particle]);
-    }
-    return {};
-}
-
-void World::set_threads(int threads) {
-    for (SoftBody& body : soft_) body.kernel.reset();
-    pool_ = std::make_unique<ThreadPool>(std::max(1, threads));
-    for (SoftBody& body : soft_) body.kernel = std::make_unique<PairForceKernel>(*pool_);
-}
-
-void World::set_body_params(std::size_t b, const Params& params) {
-    if (b >= soft_.size()) throw InputError("there is no soft body number " + std::to_string(b));
-    validate(params);
-    check_pins(params, soft_[b].mesh);
-    if (!(params == soft_[b].params)) {
-        energy_baseline_stale_ = true;
-        wake_all();  // a key changed: whatever it does, nothing stays asleep through it
-    }
-    soft_[b].params = params;
-    apply_body_keys(soft_[b]);
-    update_substeps();
-}
-
-void World::set_params(const Params& params) {
-    validate(params);
-    // The flat keys' soft body, when there is one, takes the body keys.
-    if (!soft_.empty() && soft_.front().name == "body") set_body_params(0, params);
-    // Switching to Verlet restarts it from the current x and v (x_{-1} = x_0 - v_0 h): its step
-    // was last kept up to date when Verlet last ran, and is stale by now.
-    if (params.integrator != params_.integrator) {
-        for (SoftBody& body : soft_) body.verlet_h = 0.0f;
-    }
-    if (!(params == params_)) {
-        energy_baseline_stale_ = true;
-        wake_all();
-    }
-    params_ = params;
-    update_substeps();
-}
-
-void World::set_grab(std::optional<Grab> grab) {
-    grab_ = grab;
-    energy_baseline_stale_ = true;  // the grab does work on the body
-    if (grab_ && grab_->rigid) wake_rigid(grab_->body);
-}
-
-void World::set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction) {
-    rigid_[i].restitution = restitution;
-    rigid_[i].friction = friction;
-    wake_rigid(i);
-}
-
-void World::set_pinned(std::uint32_t particle, bool pinned) {
-    softbody::set_pinned(soft_.front(), particle, pinned);
-    energy_baseline_stale_ = true;
-}
-
-void World::update_substeps() {
-    substeps_ = params_.substeps;
-    if (params_.auto_substeps) {
-        const int needed = stability().substeps_needed;
-        substeps_ = std::max(params_.substeps, needed > 0 ? needed : 1000);
-    }
-    tick_substeps_ = substeps_;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Forces at one stage of the step: stage 0 is the current state, stages 1 to 3 are RK4's.
@@ -366,7 +89,7 @@ void World::evaluate_links(int stage) {
 }
 
 void World::evaluate_forces(int stage, bool record_contacts) {
-    const float h = params_.dt / static_cast<float>(substeps_);
+    const float h = settings_.dt / static_cast<float>(substeps_);
     if (!links_.empty()) evaluate_links(stage);
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         SoftBody& body = soft_[b];
@@ -381,17 +104,17 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         if (reference_kernel_) pair_forces_reference(in, body.force);
         else body.kernel->compute(in, body.force);
 
-        add_gravity(body.force, body.mass, params_.gravity);
+        add_gravity(body.force, body.mass, settings_.gravity);
         if (grab_ && !grab_->rigid && grab_->body == b && grab_->particle < n) add_grab(body.force, s, *grab_, body.mass, h);
         if (!links_.empty()) {
             for (const auto& [particle, F] : link_force_on_particles_[b]) body.force.add(particle, F);
         }
         // Drag after every other force but friction: its implicit step needs them (forces.h).
-        if (body.params.drag_coefficient > 0.0f && params_.air_density > 0.0f) {
-            add_drag(body.force, s, n, params_.air_density, body.params.drag_coefficient, body.rest_radius, body.mass, h);
+        if (body.def.drag_coefficient > 0.0f && settings_.air_density > 0.0f) {
+            add_drag(body.force, s, n, settings_.air_density, body.def.drag_coefficient, body.rest_radius, body.mass, h);
         }
         // Friction last: Eq. 24 and 25 need everything else that pushes the particle.
-        apply_ground_friction(body, s, params_, record_contacts);
+        apply_ground_friction(body, s, settings_, record_contacts);
 
         Vec3Array& a = body.accel[stage];
         for (std::size_t i = 0; i < n; ++i) {
@@ -413,13 +136,13 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         Wrench w;
         if (!body.fixed) {
             const RigidMotion m = softbody::rigid_motion(body, state);
-            add_rigid_gravity(w, body, params_.gravity);
+            add_rigid_gravity(w, body, settings_.gravity);
             if (grab_ && grab_->rigid && grab_->body == b) add_rigid_grab(w, body, m, *grab_, h);
             if (!links_.empty()) {
                 w.F += link_force_on_rigid_[b];
                 w.tau += link_torque_on_rigid_[b];
             }
-            if (body.drag_coefficient > 0.0f && params_.air_density > 0.0f) add_rigid_drag(w, body, m, params_.air_density, h);
+            if (body.drag_coefficient > 0.0f && settings_.air_density > 0.0f) add_rigid_drag(w, body, m, settings_.air_density, h);
         }
         rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
     }
@@ -438,15 +161,15 @@ void World::step(float h) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     }
     if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_, *pool_);
-    switch (params_.integrator) {
+    switch (settings_.integrator) {
         case Integrator::Verlet:
         case Integrator::SymplecticEuler:
-            if (params_.integrator == Integrator::Verlet) {
+            if (settings_.integrator == Integrator::Verlet) {
                 for (SoftBody& body : soft_) verlet_start(body, h);
             }
             evaluate_forces(0, true);
             for (SoftBody& body : soft_) {
-                if (params_.integrator == Integrator::Verlet) verlet_update(body, h);
+                if (settings_.integrator == Integrator::Verlet) verlet_update(body, h);
                 else symplectic_euler_update(body, h);
             }
             // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
@@ -478,8 +201,8 @@ void World::step(float h) {
     // them (contact_solver.h). Before the ground's for particles: the ground moves for no one,
     // so it has the last word on a particle caught between it and a rigid body.
     if (contacts) solver_->substep(contact_world());
-    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, params_, h);
-    for (SoftBody& body : soft_) resolve_ground_contacts(body, params_, h);
+    if (soft_touching_) soft_contacts_->solve(soft_, rigid_, y_, settings_, h);
+    for (SoftBody& body : soft_) resolve_ground_contacts(body, settings_, h);
 }
 
 // The substeps `time` (a tick, or what is left of it) needs for its rigid bodies' turns. Symplectic Euler and Verlet turn each
@@ -492,7 +215,7 @@ void World::step(float h) {
 // kMaxStiffTurn (RK4 is stable for h w < 2.8): a 5 m rod 5 cm thick tumbling at 20 rad/s needs
 // about 300 substeps a tick, a box none. At most kMaxRotationSubsteps.
 int World::rotation_substeps(double time) const {
-    const bool stiff = params_.integrator == Integrator::RK4 || params_.integrator == Integrator::ExplicitEuler;
+    const bool stiff = settings_.integrator == Integrator::RK4 || settings_.integrator == Integrator::ExplicitEuler;
     const double turn = stiff ? kMaxTurnRK4 : kMaxTurn;
     // The largest over the bodies, on every thread (a maximum is the same in any order).
     std::vector<double> most_needed(std::size_t(4 * pool_->threads()), 1.0);
@@ -509,7 +232,7 @@ int World::rotation_substeps(double time) const {
         }
     });
     const double needed = *std::max_element(most_needed.begin(), most_needed.end());
-    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
+    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(settings_.dt)));
     return needed >= most ? int(most) : int(std::ceil(needed));
 }
 
@@ -517,7 +240,7 @@ int World::rotation_substeps(double time) const {
 ContactWorld World::contact_world() {
     solver_particles_.resize(soft_.size());
     solver_particle_v_.resize(soft_.size());
-    const bool verlet = params_.integrator == Integrator::Verlet;
+    const bool verlet = settings_.integrator == Integrator::Verlet;
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         SoftBody& body = soft_[b];
         SolverParticles& p = solver_particles_[b];
@@ -555,13 +278,13 @@ void World::generate_contacts(double reach) {
         ground[chunk].clear();
         for (std::size_t b = begin; b < end; ++b) {
             if (asleep_[b]) continue;
-            rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], params_, reach, ground[chunk]);
+            rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], settings_, reach, ground[chunk]);
         }
     });
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) contacts_.insert(contacts_.end(), ground[chunk].begin(), ground[chunk].end());
-    rigid_body_contacts(rigid_, shapes_, y_, params_, reach, *rigid_contact_scratch_, contacts_, asleep_, pool_.get());
+    rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, contacts_, asleep_, pool_.get());
     for (std::size_t b = 0; b < soft_.size(); ++b) {
-        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, params_, reach, contacts_);
+        particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, settings_, reach, contacts_);
     }
 }
 
@@ -571,16 +294,16 @@ void World::generate_contacts(double reach) {
 int World::begin_contacts(double interval, int steps) {
     for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
     if (contacts_.empty()) return steps;
-    steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * interval / double(params_.dt) - 1e-9)));
+    steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * interval / double(settings_.dt) - 1e-9)));
     ContactSettings settings;
     settings.dt = interval;
     settings.substeps = steps;
-    settings.gravity = Vec3d(params_.gravity);
-    settings.exact_turn = params_.integrator == Integrator::Verlet || params_.integrator == Integrator::SymplecticEuler;
+    settings.gravity = Vec3d(settings_.gravity);
+    settings.exact_turn = settings_.integrator == Integrator::Verlet || settings_.integrator == Integrator::SymplecticEuler;
     // As for particles at the ground: impacts slower than two ticks' worth of gravity are
     // resting contact; without gravity, slower than 1 cm/s (else rounding in a push apart would
     // count as an impact, and a bouncing contact is not relaxed: the push would stay in it).
-    settings.bounce_speed = std::max(2.0 * length(Vec3d(params_.gravity)) * double(params_.dt), kRestingSpeed);
+    settings.bounce_speed = std::max(2.0 * length(Vec3d(settings_.gravity)) * double(settings_.dt), kRestingSpeed);
     solver_->prepare(contacts_, previous_contacts_, contact_world(), settings);
     return steps;
 }
@@ -602,7 +325,7 @@ int World::contact_intervals(double time) const {
     });
     const double fastest = *std::max_element(fastest_in.begin(), fastest_in.end());
     const double needed = std::ceil(time * fastest / kMaxContactTurn);
-    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(params_.dt)));
+    const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(settings_.dt)));
     return needed >= most ? int(most) : std::max(1, int(needed));
 }
 
@@ -628,7 +351,7 @@ void World::tick() {
     tick_substeps_ = 0;
     // Soft bodies within reach of one another (or of themselves): found before the last
     // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
-    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, params_, params_.dt, *pool_);
+    soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, settings_, settings_.dt, *pool_);
     // A soft body within reach of a sleeping one wakes it, before anything is found or solved
     // (its contacts of last tick, the next find's warm start, come back to that list).
     if (soft_touching_ && sleep_.sleeping > 0) {
@@ -638,12 +361,12 @@ void World::tick() {
         });
         wake_islands(std::move(islands), contacts_);
     }
-    const double dt = params_.dt;
+    const double dt = settings_.dt;
     double left = dt;
     for (bool first = true; left > 1e-9 * dt; first = false) {
         const double part = left / dt;
         int steps = std::max(1, int(std::ceil(double(substeps_) * part - 1e-9)));
-        if (params_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
+        if (settings_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
         if (soft_touching_) steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * part - 1e-9)));
         double span = left;
         if (!rigid_.empty()) {
@@ -679,7 +402,7 @@ void World::tick() {
     }
     ++ticks_;
     // Listing 9: every few ticks, bring each quaternion back to unit length.
-    if (params_.renormalize_every > 0 && ticks_ % std::uint64_t(params_.renormalize_every) == 0) {
+    if (settings_.renormalize_every > 0 && ticks_ % std::uint64_t(settings_.renormalize_every) == 0) {
         for (std::size_t b = 0; b < rigid_.size(); ++b) {
             if (asleep_[b]) continue;  // not integrated, nothing to bring back
             double* q = &y_[b * rigid::kStateSize + rigid::Q];

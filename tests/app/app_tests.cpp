@@ -311,10 +311,10 @@ TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     const Result r = run_app("--frames 12 --script " + quote(script.string()));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.summary["error"], "");
-    EXPECT_FLOAT_EQ(r.summary["params"]["stiffness"].get<float>(), 42.0f);  // loaded back
+    EXPECT_FLOAT_EQ(r.summary["scene"]["soft_bodies"][0]["stiffness"].get<float>(), 42.0f);  // loaded back
     std::ifstream saved(preset);
     const auto on_disk = nlohmann::json::parse(saved);
-    EXPECT_FLOAT_EQ(on_disk["stiffness"].get<float>(), 42.0f);
+    EXPECT_FLOAT_EQ(on_disk["soft_bodies"][0]["stiffness"].get<float>(), 42.0f);
 
     // Saving again to the same file without saying "overwrite" leaves it as it is.
     const fs::path again = write_script("again.script",
@@ -324,7 +324,7 @@ TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     ASSERT_EQ(second.exit_code, 0) << second.err;
     EXPECT_NE(second.summary["error"].get<std::string>().find("already exists"), std::string::npos);
     std::ifstream unchanged(preset);
-    EXPECT_FLOAT_EQ(nlohmann::json::parse(unchanged)["stiffness"].get<float>(), 42.0f);
+    EXPECT_FLOAT_EQ(nlohmann::json::parse(unchanged)["soft_bodies"][0]["stiffness"].get<float>(), 42.0f);
 }
 
 TEST(App, BadMeshPathShowsAnErrorAndKeepsRunning) {
@@ -369,7 +369,7 @@ TEST(App, SoakScriptLoopsAndEndsRunningWithFlatMemory) {
     const Result r = run_app("--size 480x300 --frames 1250 --script tests/soak/soak.script", SOFTBODY_SOURCE_DIR);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.summary["status"], "ok");  // a loop ends on the default scene, running
-    EXPECT_EQ(r.summary["mesh"], "assets/meshes/sphere.off");
+    EXPECT_EQ(r.summary["soft_bodies"][0]["mesh"], "assets/meshes/sphere.off");
     EXPECT_EQ(r.summary["error"], "");
     // Resident memory after frame 100 and at the end. Measured: 109,936 KiB and 111,400 KiB
     // (the first loop loads each mesh and scene once). 16 MiB over 1,150 frames fails a leak of
@@ -395,7 +395,7 @@ TEST(App, EachLessonOpensInOrderAndTheSpringKeepsItsPeriod) {
         const auto& lesson = r.summary["lesson"];
         EXPECT_EQ(lesson["number"], n);
         EXPECT_FALSE(lesson["title"].get<std::string>().empty()) << n;
-        EXPECT_EQ(lesson["title"], r.summary["params"]["title"]) << n;
+        EXPECT_EQ(lesson["title"], r.summary["scene"]["title"]) << n;
         EXPECT_EQ(lesson["error"], "") << n;
         EXPECT_GT(r.summary["ticks"].get<int>(), 0) << n;
         if (n == 6) {

@@ -10,7 +10,7 @@
 #include "physics/error.h"
 #include "physics/mesh.h"
 #include "physics/mesh_reduce.h"
-#include "physics/params.h"
+#include "physics/keys.h"
 #include "physics/scene_io.h"
 
 namespace softbody::fuzz {
@@ -270,16 +270,39 @@ void scene_input(std::string_view data) {
         return;
     }
     try {
-        validate(scene.params);
-        for (const SoftBodyScene& body : scene.soft_bodies) validate(body.params);
+        validate(scene.settings);
+        for (const SoftBodyDef& body : scene.soft_bodies) validate(body);
+        for (const RigidBodyDef& body : scene.rigid_bodies) validate(body);
+        for (const SpringDef& spring : scene.springs) validate(spring);
     } catch (const InputError& e) {
         throw InvariantBroken(std::string("a scene that loads is valid: ") + e.what());
     }
     expect_scene_round_trip(scene);
 }
 
+// A scene with one of each thing, named as `--set` names them: the soft body "body", the rigid
+// body "crate", the spring "coil".
+Scene set_base() {
+    Scene scene;
+    SoftBodyDef body;
+    body.name = "body";
+    body.mesh = "cube:2";
+    scene.soft_bodies.push_back(body);
+    RigidBodyDef crate;
+    crate.name = "crate";
+    crate.size = Vec3d{1.0, 1.0, 1.0};
+    scene.rigid_bodies.push_back(crate);
+    SpringDef coil;
+    coil.name = "coil";
+    coil.a.point = Vec3d{0.0, 0.0, 3.0};
+    coil.b.body = "crate";
+    coil.stiffness = 10.0;
+    scene.springs.push_back(coil);
+    return scene;
+}
+
 void set_input(std::string_view data) {
-    Params params;
+    Scene scene = set_base();
     for (std::size_t start = 0; start <= data.size();) {
         const std::size_t end = std::min(data.find('\n', start), data.size());
         const std::string_view line = data.substr(start, end - start);
@@ -288,28 +311,33 @@ void set_input(std::string_view data) {
         const std::string_view key = line.substr(0, eq);
         const std::string_view value = eq == std::string_view::npos ? std::string_view{} : line.substr(eq + 1);
 
-        const Params before = params;
+        const Scene before = scene;
         try {
-            set_param(params, key, value);
+            set_scene_key(scene, key, value);
         } catch (const InputError&) {
-            expect(params == before, "a refused --set changes nothing");
+            expect(scene == before, "a refused --set changes nothing");
             continue;
         }
         try {
-            validate(params);
+            validate(scene.settings);
+            for (const SoftBodyDef& body : scene.soft_bodies) validate(body);
+            for (const RigidBodyDef& body : scene.rigid_bodies) validate(body);
+            for (const SpringDef& spring : scene.springs) validate(spring);
         } catch (const InputError& e) {
-            throw InvariantBroken(std::string("an accepted --set leaves valid parameters: ") + e.what());
+            throw InvariantBroken(std::string("an accepted --set leaves valid keys: ") + e.what());
         }
-        const std::string text = param_text(params, key);
-        Params again = params;
+        const std::vector<KeyTarget> targets = resolve_key(key, thing_names(scene));
+        if (targets.front().info->alias) continue;  // write-only: it set another key
+        const std::string text = key_text(*targets.front().info, get_key(scene, targets.front()));
+        Scene again = scene;
         try {
-            set_param(again, key, text);
+            set_scene_key(again, key, text);
         } catch (const InputError& e) {
-            throw InvariantBroken(std::string("param_text gives text that set_param accepts: ") + e.what());
+            throw InvariantBroken(std::string("key_text gives text that --set accepts: ") + e.what());
         }
-        expect(again == params, "set_param(param_text(...)) gives back the same value");
+        expect(again == scene, "--set of a key's own text gives back the same value");
     }
-    expect_scene_round_trip(params);
+    expect_scene_round_trip(scene);
 }
 
 }  // namespace softbody::fuzz

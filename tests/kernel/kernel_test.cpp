@@ -9,6 +9,7 @@
 #include "physics/mesh.h"
 #include "physics/pair_forces.h"
 #include "physics/thread_pool.h"
+#include "../physics/one_body_world.h"
 #include "physics/world.h"
 
 namespace softbody::test {
@@ -209,17 +210,17 @@ TEST(PairKernel, EnvironmentNamesTheTile) {
 // The whole World with the fast kernel follows the reference kernel: a torus falling freely
 // for 10 ticks (before it reaches the ground) stays within float rounding of it.
 TEST(PairKernel, WorldFollowsReferenceKernel) {
-    Params params;
+    FlatKeys params;
     params.auto_substeps = true;
-    World fast(params, torus(40, 16), WorldOptions{2, false});
-    World reference(params, torus(40, 16), WorldOptions{1, true});
+    OneBodyWorld fast(params, torus(40, 16), WorldOptions{2, false});
+    OneBodyWorld reference(params, torus(40, 16), WorldOptions{1, true});
     fast.run(10);
     reference.run(10);
     ASSERT_EQ(fast.status(), Status::Ok);
     ASSERT_EQ(reference.status(), Status::Ok);
     float worst = 0.0f;
-    for (std::size_t i = 0; i < fast.particle_count(); ++i) {
-        worst = std::max(worst, length(fast.positions()[i] - reference.positions()[i]));
+    for (std::size_t i = 0; i < fast.soft_body(0).particle_count(); ++i) {
+        worst = std::max(worst, length(fast.soft_body(0).x[i] - reference.soft_body(0).x[i]));
     }
     // Positions near 2 m after 10 ticks: 1e-5 m is about 40 float roundings of them.
     EXPECT_LT(worst, 1e-5f);

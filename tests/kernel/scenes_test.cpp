@@ -49,11 +49,11 @@ TEST(GeneratedBodies, BadTorusAndLatticeNamesAreRefused) {
 // Above the default particle budget (3,000), a generated scene still simulates all of it.
 TEST(GeneratedBodies, AGeneratedSceneSimulatesEveryParticle) {
     const Scene scene = load_scene("cloud:3100");
-    EXPECT_TRUE(scene.params.auto_substeps);
-    World world(make_world_def(scene));
-    EXPECT_EQ(world.particle_count(), 3100u);
+    EXPECT_TRUE(scene.settings.auto_substeps);
+    World world((scene));
+    EXPECT_EQ(world.soft_body(0).particle_count(), 3100u);
     const Scene torus = load_scene("torus:20x10");
-    EXPECT_EQ(World(make_world_def(torus)).particle_count(), 200u);
+    EXPECT_EQ(World(torus).soft_body(0).particle_count(), 200u);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "kernel_support.h"
+#include "../physics/one_body_world.h"
 #include "physics/world.h"
 
 namespace softbody::test {
@@ -17,7 +18,7 @@ Mesh cloud(std::size_t n) {
 }
 
 TEST(AutoSubsteps, KeepTwoThousandParticlesStableWhereOneStepDiverges) {
-    Params params;  // m 1 kg, k 10 N/m, c 0.1 kg/s, dt 0.02 s, a ground plane, init_height 2 m
+    FlatKeys params;  // m 1 kg, k 10 N/m, c 0.1 kg/s, dt 0.02 s, a ground plane, init_height 2 m
     ASSERT_EQ(params.particle_mass, 1.0f);
     ASSERT_EQ(params.stiffness, 10.0f);
     ASSERT_EQ(params.damping, 0.1f);
@@ -28,7 +29,7 @@ TEST(AutoSubsteps, KeepTwoThousandParticlesStableWhereOneStepDiverges) {
     // One step a tick: past the limit, and the world says so when it blows up.
     params.substeps = 1;
     params.auto_substeps = false;
-    World single(params, mesh, WorldOptions{2, false});
+    OneBodyWorld single(params, mesh, WorldOptions{2, false});
     const Stability before = single.stability();
     EXPECT_FALSE(before.stable);
     EXPECT_GT(before.h_omega, before.limit);
@@ -44,7 +45,7 @@ TEST(AutoSubsteps, KeepTwoThousandParticlesStableWhereOneStepDiverges) {
 
     // Automatic: the fewest substeps that are stable, and 1000 ticks (20 s) without trouble.
     params.auto_substeps = true;
-    World automatic(params, mesh, WorldOptions{2, false});
+    OneBodyWorld automatic(params, mesh, WorldOptions{2, false});
     EXPECT_EQ(automatic.substeps_in_use(), needed);
     const Stability s = automatic.stability();
     EXPECT_TRUE(s.stable);
@@ -59,18 +60,18 @@ TEST(AutoSubsteps, KeepTwoThousandParticlesStableWhereOneStepDiverges) {
     EXPECT_GE(automatic.min_z(), params.ground_height);
     const Vec3 com = automatic.center_of_mass();
     EXPECT_LT(com.z, 1.0f);
-    for (std::size_t i = 0; i < automatic.particle_count(); ++i) {
-        ASSERT_LT(length(automatic.positions()[i] - com), 2.0f) << "particle " << i;
+    for (std::size_t i = 0; i < automatic.soft_body(0).particle_count(); ++i) {
+        ASSERT_LT(length(automatic.soft_body(0).x[i] - com), 2.0f) << "particle " << i;
     }
 }
 
 // The same world at 1 and 2 threads, tick for tick: bit-identical states.
 TEST(AutoSubsteps, WorldIsBitIdenticalAtOneAndTwoThreads) {
-    Params params;
+    FlatKeys params;
     params.auto_substeps = true;
     const Mesh mesh = cloud(1100);  // five blocks: fifteen tiles, shared out between the threads
-    World one(params, mesh, WorldOptions{1, false});
-    World two(params, mesh, WorldOptions{2, false});
+    OneBodyWorld one(params, mesh, WorldOptions{1, false});
+    OneBodyWorld two(params, mesh, WorldOptions{2, false});
     for (int t = 0; t < 60; ++t) {  // 1.2 s: it falls, hits the ground and bounces
         one.tick();
         two.tick();

@@ -10,17 +10,18 @@ namespace softbody::test {
 namespace {
 
 World world_of(const std::string& json, int threads = 1) {
-    return World(make_world_def(parse_scene(json, "test.json")), WorldOptions{threads});
+    return World(parse_scene(json, "test.json"), WorldOptions{threads});
 }
 
 // A scene's rigid bodies and keys, with a soft body "body" of the given points added, placed
-// where the points are (init_height 0), with the scene's body keys (stiffness, damping,
-// particle_mass), so that set_params() with the world's keys keeps them.
+// where the points are (init_height 0), with the scene's top-level body keys (stiffness,
+// damping, particle_mass).
 World world_with_soft(const std::string& json, const std::vector<Vec3>& at, int threads = 1) {
-    WorldDef def = make_world_def(parse_scene(json, "test.json"));
-    def.params.init_height = 0.0f;
-    def.soft_bodies.push_back(SoftBodyDef{"body", def.params, points(at)});
-    return World(std::move(def), WorldOptions{threads});
+    WorldDef def = parse_scene(json, "test.json");
+    SoftBodyDef body = flat_body_of(json, points(at));
+    body.init_height = 0.0f;
+    def.soft_bodies.push_back(std::move(body));
+    return World(def, WorldOptions{threads});
 }
 
 // Equal masses meeting along the normal, e and no friction: Eq. 38's lambda = (1 + e) m v_n / 2
@@ -192,7 +193,7 @@ TEST(Tunnelling, SoftBodyDroppedFromFiveMetresStaysOnTopOfABox) {
     float deepest = 0.0f;
     for (int t = 0; t < 250; ++t) {
         world.tick();
-        for (std::size_t i = 0; i < world.particle_count(); ++i) deepest = std::max(deepest, 1.0f - position(world, i).z);
+        for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) deepest = std::max(deepest, 1.0f - position(world, i).z);
     }
     ASSERT_EQ(world.status(), Status::Ok);
     // Caught at the top face: at most the solver's slop and a step's fall of squash below it.
@@ -298,16 +299,16 @@ TEST(SoftOnRigid, CubeOnATiltingRampHoldsUntilTanThetaReachesMuS) {
     World world = cube_on_ramp(kRampDegrees);
     const Vec3d along = ramp_axes(kRampDegrees).along;
     world.run(50);  // settles into its springs
-    const double s0 = downhill(world.positions(), along);
+    const double s0 = downhill(world.soft_body(0).x, along);
     double went_at = 0.0;
     for (int t = 0; t < 1000 && went_at == 0.0; ++t) {
         const double extra = 2.0 * (t + 1) * 0.02 * kPi / 180.0;
-        Params p = world.params();
+        WorldSettings p = world.settings();
         p.gravity = {float(9.81 * std::sin(extra)), 0.0f, float(-9.81 * std::cos(extra))};
-        world.set_params(p);
+        world.set_settings(p);
         world.tick();
         ASSERT_EQ(world.status(), Status::Ok);
-        if (downhill(world.positions(), along) - s0 > 1e-3) went_at = kRampDegrees * kPi / 180.0 + extra;
+        if (downhill(world.soft_body(0).x, along) - s0 > 1e-3) went_at = kRampDegrees * kPi / 180.0 + extra;
     }
     ASSERT_GT(went_at, 0.0) << "it never slid";
     EXPECT_GT(std::tan(went_at), 0.95 * 0.6);
@@ -320,10 +321,10 @@ TEST(SoftOnRigid, SlidesDownASteepRampWithTheAccelerationOfMuD) {
     World world = cube_on_ramp(degrees);
     const Vec3d along = ramp_axes(degrees).along;
     world.run(25);  // landed on its springs, sliding
-    const double v1 = downhill(world.velocities(), along);
+    const double v1 = downhill(world.soft_body(0).v, along);
     world.run(50);
     ASSERT_EQ(world.status(), Status::Ok);
-    const double v2 = downhill(world.velocities(), along);
+    const double v2 = downhill(world.soft_body(0).v, along);
     // g (sin 40 - 0.4 cos 40) = 3.30 m/s^2. Within 2 %: the body's springs still ring a little.
     const double a = 9.81 * (std::sin(degrees * kPi / 180.0) - 0.4 * std::cos(degrees * kPi / 180.0));
     EXPECT_NEAR((v2 - v1) / 1.0, a, 0.02 * a);

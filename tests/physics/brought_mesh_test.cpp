@@ -14,15 +14,15 @@ namespace {
 // What `softbody simulate --mesh FILE` builds: the default keys, the mesh fitted.
 World brought(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets = {}) {
     Scene scene;
-    scene.params.mesh = path;
-    fit_brought_mesh(scene.params);
+    set_scene_key(scene, "mesh", path);
+    fit_brought_mesh(scene.soft_bodies.front());
     for (const auto& [key, value] : sets) set_scene_key(scene, key, value);
-    return World(make_world_def(scene));
+    return World(scene);
 }
 
 // The extent of the body's rest shape along each axis, m.
 Vec3 rest_extent(const World& world) {
-    const Vec3Array& r = world.rest_positions();
+    const Vec3Array& r = world.soft_body(0).rest;
     Vec3 lo = r[0], hi = lo;
     for (std::size_t i = 0; i < r.size(); ++i) {
         lo = {std::min(lo.x, r.x[i]), std::min(lo.y, r.y[i]), std::min(lo.z, r.z[i])};
@@ -48,7 +48,7 @@ TEST(BroughtMesh, AFigureInAnyUnitStandsUpAtOneMetreAndRuns) {
     };
     for (const Case& c : cases) {
         World world = brought(dir.write(c.name, c.text));
-        const SoftBody& body = world.body();
+        const SoftBody& body = world.soft_body(0);
         // The file's largest side (1.8 m in its units) becomes 1 m: to float rounding.
         EXPECT_NEAR(body.scale_used, c.metres_per_unit / 1.8, 1e-6 * c.metres_per_unit / 1.8) << c.name;
         const Vec3 size = rest_extent(world);
@@ -87,10 +87,10 @@ TEST(BroughtMesh, AboveTheBudgetItRunsOnAReducedSet) {
     TempDir dir;
     const std::string path = dir.write("torus.obj", to_obj(torus(1.0, 0.3, 120, 100)));
     World world = brought(path);
-    const SoftBody& body = world.body();
+    const SoftBody& body = world.soft_body(0);
     ASSERT_TRUE(body.reduced);
-    EXPECT_LE(world.particle_count(), 3000u);
-    EXPECT_GT(world.particle_count(), 2000u);  // the budget is used, not wasted
+    EXPECT_LE(world.soft_body(0).particle_count(), 3000u);
+    EXPECT_GT(world.soft_body(0).particle_count(), 2000u);  // the budget is used, not wasted
     EXPECT_EQ(body.mesh.particle_count(), 12000u);
     EXPECT_EQ(body.skin.size(), 12000u);  // every vertex follows the simulated ones
     world.run(500);
@@ -98,12 +98,12 @@ TEST(BroughtMesh, AboveTheBudgetItRunsOnAReducedSet) {
     EXPECT_GE(world.min_z(), 0.0f);
     // Pinning a vertex pins the particle it moves with.
     World pinned = brought(path, {{"pinned", "0,5000"}, {"gravity", "0,0,-9.81"}});
-    EXPECT_TRUE(pinned.is_pinned(particle_of_vertex(pinned.body(), 0)));
-    EXPECT_TRUE(pinned.is_pinned(particle_of_vertex(pinned.body(), 5000)));
+    EXPECT_TRUE(pinned.soft_body(0).is_pinned(particle_of_vertex(pinned.soft_body(0), 0)));
+    EXPECT_TRUE(pinned.soft_body(0).is_pinned(particle_of_vertex(pinned.soft_body(0), 5000)));
     // All: one particle per vertex (12,000 of them; fine to build, slow to run).
     World all = brought(path, {{"max_particles", "all"}});
-    EXPECT_FALSE(all.body().reduced);
-    EXPECT_EQ(all.particle_count(), 12000u);
+    EXPECT_FALSE(all.soft_body(0).reduced);
+    EXPECT_EQ(all.soft_body(0).particle_count(), 12000u);
 }
 
 // A large, light body with drag, as a scene with an explicit scale might bring it: a sheet
@@ -116,7 +116,7 @@ TEST(BroughtMesh, ALargeLightSheetWithDragRuns) {
     world.run(500);
     ASSERT_EQ(world.status(), Status::Ok) << world.divergence();
     float fastest = 0.0f;
-    for (std::size_t i = 0; i < world.particle_count(); ++i) fastest = std::max(fastest, length(velocity(world, i)));
+    for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) fastest = std::max(fastest, length(velocity(world, i)));
     EXPECT_LT(fastest, 0.1f);  // about 2 cm/s, its terminal velocity, or resting
 }
 

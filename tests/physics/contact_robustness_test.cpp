@@ -15,7 +15,7 @@
 namespace softbody::test {
 namespace {
 
-World world_of(const std::string& json) { return World(make_world_def(parse_scene(json, "test.json"))); }
+World world_of(const std::string& json) { return World((parse_scene(json, "test.json"))); }
 
 const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
 
@@ -307,8 +307,8 @@ TEST(ContactFuzz, RandomScenesNeverDivergeNorGainEnergy) {
     for (int seed = 1; seed <= kSeeds; ++seed) {
         for (const char* integrator : kIntegrators) {
             Scene scene = generated_scene("random:" + std::to_string(seed));
-            scene.params.integrator = *integrator_from_string(integrator);
-            World world(make_world_def(scene));
+            scene.settings.integrator = *integrator_from_string(integrator);
+            World world((scene));
             const std::string what = "random:" + std::to_string(seed) + " " + integrator;
             if (!keeps_energy(integrator)) {
                 world.run(250);

@@ -15,8 +15,8 @@ namespace {
 constexpr double kG = 9.81;
 constexpr float kMuS = 0.6f, kMuD = 0.4f;
 
-Params ground_params() {
-    Params p = bare_params();
+FlatKeys ground_params() {
+    FlatKeys p = bare_params();
     p.ground = true;
     p.ground_height = 0.0f;
     p.static_friction = kMuS;
@@ -24,8 +24,8 @@ Params ground_params() {
     return p;
 }
 
-Params slope_params(double angle) {
-    Params p = ground_params();
+FlatKeys slope_params(double angle) {
+    FlatKeys p = ground_params();
     p.gravity = {float(kG * std::sin(angle)), 0.0f, float(-kG * std::cos(angle))};
     return p;
 }
@@ -37,7 +37,7 @@ std::vector<Mesh> blocks() {
             points({{0.0f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}}, "square")};
 }
 
-Params with_springs(Params p, const Mesh& mesh) {
+FlatKeys with_springs(FlatKeys p, const Mesh& mesh) {
     if (mesh.particle_count() > 1) {
         p.stiffness = 200.0f;  // N (k h^2 + 2 c h) = 4 (0.08 + 0.04) = 0.48 < 4 m: stable
         p.damping = 0.5f;
@@ -55,14 +55,14 @@ TEST(StaticFriction, HoldsBelowMuS) {
     for (const Mesh& mesh : blocks()) {
         for (double angle : {degrees(10.0), degrees(25.0), at_limit - degrees(0.5)}) {
           for (const Vec3& drift : drifts) {
-            Params p = with_springs(slope_params(angle), mesh);
+            FlatKeys p = with_springs(slope_params(angle), mesh);
             p.initial_velocity = drift;
-            World world(p, mesh);
+            OneBodyWorld world(p, mesh);
             std::vector<Vec3> x0;
-            for (std::size_t i = 0; i < world.particle_count(); ++i) x0.push_back(position(world, i));
+            for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) x0.push_back(position(world, i));
             world.run(500);  // 10 s
             ASSERT_EQ(world.status(), Status::Ok);
-            for (std::size_t i = 0; i < world.particle_count(); ++i) {
+            for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) {
                 // |F_t| <= mu_s |F_n|: Eq. 24 cancels F_t exactly, and the step ends where it
                 // began. Zero displacement, exactly: any creep at all is a failure.
                 EXPECT_EQ(position(world, i).x, x0[i].x) << mesh.source << " at " << angle * 180 / kPi << " deg";
@@ -82,9 +82,9 @@ TEST(StaticFriction, HoldsBelowMuS) {
 TEST(StaticFriction, BlockPushedUphillStopsAndStays) {
     const double angle = degrees(25.0);  // tan 25 = 0.47: above mu_d, below mu_s
     const double v0 = 2.0;
-    Params p = slope_params(angle);
+    FlatKeys p = slope_params(angle);
     p.initial_velocity = {float(-v0), 0.0f, 0.0f};  // downhill is +x
-    World world(p, points({{0.0f, 0.0f, 0.0f}}));
+    OneBodyWorld world(p, points({{0.0f, 0.0f, 0.0f}}));
     double highest = 0.0;
     int stopped_at = -1;
     for (int n = 1; n <= 500; ++n) {
@@ -112,7 +112,7 @@ TEST(StaticFriction, SlidesAboveMuSWithAccelerationFromMuD) {
     const double at_limit = std::atan(double(kMuS));
     for (const Mesh& mesh : blocks()) {
         for (double angle : {at_limit + degrees(1.0), degrees(40.0), degrees(60.0)}) {
-            World world(with_springs(slope_params(angle), mesh), mesh);
+            OneBodyWorld world(with_springs(slope_params(angle), mesh), mesh);
             world.run(20);
             const double v1 = velocity(world, 0).x;
             const double x1 = position(world, 0).x;
@@ -142,10 +142,10 @@ TEST(StaticFriction, SlidesAboveMuSWithAccelerationFromMuD) {
 // v0^2 / (2 mu_d g). It must never reverse, and once stopped static friction holds it.
 TEST(DynamicFriction, StopsAfterV0SquaredOver2MuDG) {
     for (const Vec3 v0 : {Vec3{3.0f, 0.0f, 0.0f}, Vec3{-1.2f, 2.5f, 0.0f}, Vec3{0.5f, 0.5f, 0.0f}}) {
-        Params p = ground_params();
+        FlatKeys p = ground_params();
         p.gravity = {0.0f, 0.0f, float(-kG)};
         p.initial_velocity = v0;
-        World world(p, points({{0.0f, 0.0f, 0.0f}}));
+        OneBodyWorld world(p, points({{0.0f, 0.0f, 0.0f}}));
         const double speed = length(v0);
         const Vec3 direction = v0 / length(v0);
         double along = 0.0;
@@ -180,11 +180,11 @@ TEST(DynamicFriction, StopsAfterV0SquaredOver2MuDG) {
 TEST(Restitution, BouncesBackWithETimesImpactSpeed) {
     const double H = 1.0, h = 0.02;
     for (const float e : {0.0f, 0.3f, 0.5f, 1.0f}) {
-        Params p = ground_params();
+        FlatKeys p = ground_params();
         p.gravity = {0.0f, 0.0f, float(-kG)};
         p.restitution = e;
         p.init_height = float(H);
-        World world(p, points({{0.0f, 0.0f, 0.0f}}));
+        OneBodyWorld world(p, points({{0.0f, 0.0f, 0.0f}}));
         float v_before = 0.0f;
         int n = 0;
         while (position(world, 0).z > 0.0f && n < 1000) {
@@ -218,8 +218,8 @@ TEST(Restitution, BouncesBackWithETimesImpactSpeed) {
 TEST(Ground, DroppedBodyStaysAboveIt) {
     // A falling cube with Listing 8's springs: every particle stays at or above the ground,
     // at every tick (the contact puts a particle back on the surface within the step).
-    Params p = listing8_params();
-    World world(p, points(cube_corners()));
+    FlatKeys p = listing8_params();
+    OneBodyWorld world(p, points(cube_corners()));
     for (int n = 0; n < 500; ++n) {
         world.tick();
         ASSERT_GE(world.min_z(), p.ground_height) << "tick " << n;

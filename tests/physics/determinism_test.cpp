@@ -17,8 +17,8 @@ constexpr std::size_t kParticles = 550;  // three blocks of 256: six tiles
 
 // Listing 8's constants with the ground, friction and drag (every code path), but half the
 // stiffness: N (k h^2 + 2 c h) = 3.3 < 4 m keeps 550 particles stable at one substep.
-Params determinism_params() {
-    Params p = listing8_params();
+FlatKeys determinism_params() {
+    FlatKeys p = listing8_params();
     p.stiffness = 5.0f;
     p.initial_velocity = {0.7f, -0.4f, 0.0f};
     return p;
@@ -26,7 +26,7 @@ Params determinism_params() {
 
 std::uint64_t hash_after(int threads, int ticks) {
     static_assert(kParticles > 2 * PairForceKernel::kBlock);
-    World world(determinism_params(), points(random_cloud(kParticles, 31, 1.5f)), WorldOptions{threads});
+    OneBodyWorld world(determinism_params(), points(random_cloud(kParticles, 31, 1.5f)), WorldOptions{threads});
     world.run(std::uint64_t(ticks));
     EXPECT_EQ(world.status(), Status::Ok);
     EXPECT_EQ(world.ticks(), std::uint64_t(ticks));
@@ -53,19 +53,19 @@ TEST(Determinism, HashSeesTheState) {
     const std::vector<Vec3> cloud = random_cloud(10, 5);
     std::vector<Vec3> moved = cloud;
     moved[7].y = std::nextafter(moved[7].y, 10.0f);
-    Params p = determinism_params();
-    const World a(p, points(cloud)), b(p, points(moved));
+    FlatKeys p = determinism_params();
+    const OneBodyWorld a(p, points(cloud)), b(p, points(moved));
     p.initial_velocity.z += 1e-3f;
-    const World c(p, points(cloud));
+    const OneBodyWorld c(p, points(cloud));
     EXPECT_NE(a.state_hash(), b.state_hash());
     EXPECT_NE(a.state_hash(), c.state_hash());
 }
 
 TEST(Determinism, ChangingThreadsMidRunKeepsTheHash) {
-    const Params p = determinism_params();
+    const FlatKeys p = determinism_params();
     const Mesh mesh = points(random_cloud(kParticles, 31, 1.5f));
-    World a(p, mesh, WorldOptions{1});
-    World b(p, mesh, WorldOptions{2});
+    OneBodyWorld a(p, mesh, WorldOptions{1});
+    OneBodyWorld b(p, mesh, WorldOptions{2});
     a.run(75);
     b.run(75);
     b.set_threads(1);
@@ -82,7 +82,7 @@ TEST(Determinism, ChangingThreadsMidRunKeepsTheHash) {
 // thread keeps to itself (kManifoldGrain a slab), so every thread count splits the work
 // differently; and a pyramid at rest.
 std::uint64_t rigid_hash_after(const char* scene, int threads, int ticks, std::size_t* contacts = nullptr) {
-    World world(make_world_def(generated_scene(scene)), WorldOptions{threads});
+    World world((generated_scene(scene)), WorldOptions{threads});
     world.run(std::uint64_t(ticks));
     EXPECT_EQ(world.status(), Status::Ok);
     if (contacts) *contacts = world.contacts().size();

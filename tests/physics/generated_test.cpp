@@ -53,14 +53,15 @@ TEST(Generated, PileIsNBodiesInABinAndAddsUpWithACloud) {
     std::size_t fixed = 0;
     for (const RigidBodyDef& body : pile.rigid_bodies) fixed += body.fixed;
     EXPECT_EQ(fixed, 4u);
-    EXPECT_TRUE(pile.params.mesh.empty());
+    EXPECT_TRUE(pile.soft_bodies.empty());
     const Scene mixed = load_scene("pile:30+cloud:200");
     EXPECT_EQ(mixed.rigid_bodies.size(), 34u);
-    EXPECT_EQ(mixed.params.mesh, "cloud:200");
-    EXPECT_TRUE(mixed.params.auto_substeps);
+    ASSERT_EQ(mixed.soft_bodies.size(), 1u);
+    EXPECT_EQ(mixed.soft_bodies[0].mesh, "cloud:200");
+    EXPECT_TRUE(mixed.settings.auto_substeps);
     // It builds and runs: every body falls into the bin (or onto its walls, 0.1 m thick
     // outside the floor's 1.4 m) and none leaves it.
-    World world(make_world_def(mixed));
+    World world((mixed));
     world.run(100);
     ASSERT_EQ(world.status(), Status::Ok);
     for (std::size_t b = 4; b < world.rigid_body_count(); ++b) {

@@ -20,12 +20,13 @@ World travel_world() {
         "{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.2, \"position\": [-0.4, 0.1, 1.5], \"velocity\": [0.5, 0, 0]}],"
         " \"springs\": [{\"a\": {\"body\": \"ball\", \"point\": [0, 0, 0.2]}, \"b\": {\"point\": [-0.4, 0.1, 2.5]},"
         " \"stiffness\": 20, \"damping\": 0.5}]}";
-    WorldDef def = make_world_def(parse_scene(scene, "travel.json"));
+    WorldDef def = parse_scene(scene, "travel.json");
     std::vector<Vec3> cloud = random_cloud(150, 5, 0.3f);
     for (Vec3& p : cloud) p += Vec3{0.0f, 0.0f, 1.2f};
-    def.params.init_height = 0.0f;
-    def.soft_bodies.push_back(SoftBodyDef{"body", def.params, points(cloud)});
-    return World(std::move(def));
+    SoftBodyDef body = flat_body_of(scene, points(cloud));
+    body.init_height = 0.0f;
+    def.soft_bodies.push_back(std::move(body));
+    return World(def);
 }
 
 // What a user does during the live run, tick by tick: a grab dragged across ticks 30-60, the
@@ -41,11 +42,11 @@ void user_inputs(World& world) {
         world.set_grab(std::nullopt);
     }
     if (t == 90) {
-        Params p = world.params();
+        FlatKeys p = flat_keys(world);
         p.stiffness = 0.8f;
-        world.set_params(p);
+        set_flat(world, p);
     }
-    if (t == 110) world.set_rigid_material(1, 0.9f, 0.2f);
+    if (t == 110) set_material(world, 1, 0.9f, 0.2f);
 }
 
 // The live run, recorded: the state hash after every tick (hashes[t] is the hash at tick t).
@@ -73,7 +74,7 @@ void play(World& world, History& history, std::uint64_t ticks) {
 TEST(History, GoingBackGivesTheWorldThatWasThereAndPlayingOnTheFutureThatHappened) {
     for (const char* integrator : {"verlet", "symplectic_euler", "explicit_euler", "rk4"}) {
         World world = travel_world();
-        Params p = world.params();
+        FlatKeys p = flat_keys(world);
         p.integrator = *integrator_from_string(integrator);
         if (p.integrator == Integrator::ExplicitEuler) {
             // The grab's pull excites it past its limit at the automatic substeps (it gains
@@ -81,7 +82,7 @@ TEST(History, GoingBackGivesTheWorldThatWasThereAndPlayingOnTheFutureThatHappene
             p.auto_substeps = false;
             p.substeps = 4;
         }
-        world.set_params(p);
+        set_flat(world, p);
         History history;
         const std::vector<std::uint64_t> hashes = live_run(world, history, 200);
         ASSERT_EQ(world.status(), Status::Ok) << integrator << ": " << world.divergence();
@@ -97,7 +98,7 @@ TEST(History, GoingBackGivesTheWorldThatWasThereAndPlayingOnTheFutureThatHappene
         EXPECT_EQ(world.ticks(), 200u);
         EXPECT_EQ(world.state_hash(), hashes[200]) << integrator;
         EXPECT_FALSE(history.in_past(world));
-        EXPECT_FLOAT_EQ(world.params().stiffness, 0.8f);
+        EXPECT_FLOAT_EQ(world.soft_body(0).def.stiffness, 0.8f);
     }
 }
 
@@ -109,11 +110,11 @@ TEST(History, GoingBackBeforeADivergenceGivesTheWorldBackWhole) {
     std::vector<std::uint64_t> hashes = live_run(world, history, 100);
     // Then explicit Euler at a stiffness its single step cannot hold (it gains energy from every
     // spring a step, by sqrt(1 + (h omega)^2)): it blows up within a few ticks.
-    Params p = world.params();
+    FlatKeys p = flat_keys(world);
     p.integrator = Integrator::ExplicitEuler;
     p.auto_substeps = false;
     p.stiffness = 50.0f;
-    world.set_params(p);
+    set_flat(world, p);
     while (world.ticks() < 200 && world.status() == Status::Ok) {
         history.before_tick(world);
         world.tick();
@@ -147,10 +148,10 @@ TEST(History, ChangingThePastDropsTheRecordedFuture) {
     History history;
     const std::vector<std::uint64_t> hashes = live_run(world, history, 150);
     history.go_to(world, 100);
-    Params p = world.params();
+    FlatKeys p = flat_keys(world);
     p.gravity.z = -3.0f;  // a what-if from tick 100
     history.branch(world);
-    world.set_params(p);
+    set_flat(world, p);
     EXPECT_EQ(history.newest_tick(), 100u);
     EXPECT_FALSE(history.in_past(world));
     play(world, history, 50);
@@ -168,14 +169,14 @@ TEST(History, APinSetInThePastIsReplayedFromItsKeyframe) {
     History history;
     history.start(world);
     play(world, history, 25);  // not on a keyframe
-    world.set_pinned(4, true);
+    world.set_pinned(0, 4, true);
     history.keyframe_now(world);
     play(world, history, 30);
     const std::uint64_t at_55 = world.state_hash();
     history.go_to(world, 27);
-    EXPECT_TRUE(world.is_pinned(4));
+    EXPECT_TRUE(world.soft_body(0).is_pinned(4));
     history.go_to(world, 24);
-    EXPECT_FALSE(world.is_pinned(4));
+    EXPECT_FALSE(world.soft_body(0).is_pinned(4));
     history.go_to(world, 55);
     EXPECT_EQ(world.state_hash(), at_55);
 }
@@ -198,10 +199,10 @@ TEST(History, KeepsItsCapacityAndSaysWhatItCosts) {
 
 // A keyframe's size at 5,000 particles, as history.h states it: 52 bytes a particle.
 TEST(History, AKeyframeOfFiveThousandParticlesIs260Kilobytes) {
-    Params p = listing8_params();
+    FlatKeys p = listing8_params();
     p.max_particles = 0;  // all: one particle per point
-    World world(p, points(random_cloud(5000, 3, 2.0f)));
-    ASSERT_EQ(world.particle_count(), 5000u);
+    OneBodyWorld world(p, points(random_cloud(5000, 3, 2.0f)));
+    ASSERT_EQ(world.soft_body(0).particle_count(), 5000u);
     world.tick();  // Verlet's last step and the previous tick's positions exist from the first tick
     const double kb = double(world.snapshot().bytes()) / 1000.0;
     EXPECT_NEAR(kb, 260.0, 2.0);

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 // Runs a few ticks of the default parameters on a mesh: the body falls and stays finite.
 void expect_simulates(const Mesh& mesh) {
-    World world(Params{}, mesh);
+    OneBodyWorld world(FlatKeys{}, mesh);
     world.run(100);
     EXPECT_EQ(world.status(), Status::Ok) << world.divergence();
     EXPECT_TRUE(all_finite(world));
@@ -128,11 +128,11 @@ TEST(HostileFiles, EnormousJsonIsRefusedOrRead) {
     EXPECT_REFUSED_NAMING(parse_scene(huge, "huge.json"), "huge.json", "too large");
 
     // Just under: a long list of pins reads fine (World checks them against the mesh).
-    std::string pins = "{\"pinned\": [0";
+    std::string pins = "{\"mesh\": \"cube:2\", \"pinned\": [0";
     for (int i = 1; i < 150'000; ++i) pins += "," + std::to_string(i % 8);
     pins += "]}";
     ASSERT_LT(pins.size(), std::size_t(1) << 20);
-    EXPECT_EQ(load_scene(dir.write("pins.json", pins)).params.pinned.size(), 150'000u);
+    EXPECT_EQ(load_scene(dir.write("pins.json", pins)).soft_bodies[0].pinned.size(), 150'000u);
 
     // A key of most of a megabyte: named, cut short, on one line, and no slower than a
     // short one to look up ("did you mean" compares it with every key).
@@ -162,7 +162,7 @@ TEST(HostileFiles, FolderInsteadOfAFile) {
     EXPECT_REFUSED_NAMING(load_mesh(dir.file("mesh.obj")), "mesh.obj", "is a folder");
     EXPECT_REFUSED_NAMING(load_mesh(dir.file("mesh.off")), "mesh.off", "is a folder");
     EXPECT_REFUSED_NAMING(load_scene(dir.file("scene.json")), "scene.json", "is a folder");
-    EXPECT_REFUSED_NAMING(save_scene(dir.file("scene.json"), Params{}, Overwrite::Yes), "scene.json", "folder");
+    EXPECT_REFUSED_NAMING(save_scene(dir.file("scene.json"), Scene{}, Overwrite::Yes), "scene.json", "folder");
     // Through a symbolic link too.
     fs::create_directory_symlink(dir.file("mesh.obj"), dir.file("link.obj"));
     EXPECT_REFUSED_NAMING(load_mesh(dir.file("link.obj")), "link.obj", "is a folder");
@@ -250,8 +250,8 @@ TEST(HostileFiles, SinglePoint) {
         const Mesh mesh = load_mesh(path);
         ASSERT_EQ(mesh.particle_count(), 1u) << path;
         EXPECT_EQ(mesh.positions[0], (Vec3{0.25f, 0.5f, 1.0f}));
-        World world(Params{}, mesh);
-        EXPECT_EQ(world.spring_count(), 0u);
+        OneBodyWorld world(FlatKeys{}, mesh);
+        EXPECT_EQ(world.soft_body(0).spring_count(), 0u);
         world.run(200);  // 4 s: it falls 3 m and rests on the ground
         EXPECT_EQ(world.status(), Status::Ok) << world.divergence();
         EXPECT_NEAR(position(world, 0).z, 0.0f, 1e-4f);
@@ -315,19 +315,19 @@ TEST(HostileFiles, NonUtf8Names) {
     const std::string folder = dir.file(odd);
     fs::create_directory(folder);
     const std::string scene = dir.write(odd + "/scene.json", "{\"mesh\": \"../" + std::string("a.obj") + "\"}");
-    EXPECT_EQ(load_scene(scene).params.mesh, dir.file("a.obj"));
+    EXPECT_EQ(load_scene(scene).soft_bodies[0].mesh, dir.file("a.obj"));
     // Inside JSON, bytes that are not UTF-8 are malformed JSON, said so with the line.
     EXPECT_REFUSED_NAMING(parse_scene("{\n\"mesh\": \"" + odd + ".obj\"}", "bad.json"), "bad.json:2:", "malformed JSON");
     // A scene file cannot hold such a mesh path: saving says so and writes nothing.
-    Params params;
+    FlatKeys params;
     params.mesh = mesh_path;
     const std::string target = dir.file("preset.json");
-    EXPECT_REFUSED_NAMING(save_scene(target, params, Overwrite::No), "'mesh'", "UTF-8");
+    EXPECT_REFUSED_NAMING(save_scene(target, scene_of(params), Overwrite::No), "'mesh'", "UTF-8");
     EXPECT_FALSE(fs::exists(target));
     // But a scene file may itself have such a name.
     params.mesh = dir.file("a.obj");
-    save_scene(dir.file(odd + ".json"), params, Overwrite::No);
-    EXPECT_EQ(load_scene(dir.file(odd + ".json")).params.mesh, dir.file("a.obj"));
+    save_scene(dir.file(odd + ".json"), scene_of(params), Overwrite::No);
+    EXPECT_EQ(load_scene(dir.file(odd + ".json")).soft_bodies[0].mesh, dir.file("a.obj"));
     // OBJ names and comments in any encoding are skipped.
     EXPECT_EQ(load_mesh(dir.write("names.obj", "# " + odd + "\no " + odd + "\ng " + odd + "\nusemtl " + odd +
                                                     "\nv 0 0 0\n"))

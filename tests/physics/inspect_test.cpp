@@ -16,8 +16,8 @@ const ForceTerm* term(const ParticleInspection& in, const std::string& name) {
     return nullptr;
 }
 
-Params cube_params() {
-    Params p = listing8_params();
+FlatKeys cube_params() {
+    FlatKeys p = listing8_params();
     p.particle_mass = 0.1f;
     p.stiffness = 200.0f;
     p.damping = 0.5f;
@@ -31,7 +31,7 @@ Params cube_params() {
 TEST(Inspector, RestingParticleNamesEq24AndItsTermsSumToTheNet) {
     std::vector<Vec3> corners = cube_corners(0.3f);
     for (Vec3& c : corners) c.z += 0.15f;  // bottom face on the ground
-    World world(cube_params(), points(corners));
+    OneBodyWorld world(cube_params(), points(corners));
     world.run(250);  // 5 s: settled
     ASSERT_EQ(world.status(), Status::Ok);
     const ParticleInspection in = inspect_particle(world, 0, 0);  // corner 0: bottom
@@ -58,17 +58,17 @@ TEST(Inspector, RestingParticleNamesEq24AndItsTermsSumToTheNet) {
 // The springs and dampers on one particle are the reference kernel's (Eq. 21, 22 over every
 // pair), and its three strongest pairs are named.
 TEST(Inspector, SpringsAndDampersAreTheKernelsForThatParticle) {
-    Params p = cube_params();
+    FlatKeys p = cube_params();
     p.ground = false;
     p.gravity = {0.0f, 0.0f, 0.0f};
     p.initial_velocity = {0.0f, 0.0f, 0.0f};
     std::vector<Vec3> cloud = random_cloud(40, 3, 0.5f);
-    World world(p, points(cloud));
+    OneBodyWorld world(p, points(cloud));
     // Give it a shape to spring back from: a pull on one particle for a few ticks.
     world.set_grab(Grab{5, Vec3{2.0f, 0.0f, 0.0f}, 50.0f, 0, false, {}});
     world.run(10);
     world.set_grab(std::nullopt);
-    const SoftBody& body = world.body();
+    const SoftBody& body = world.soft_body(0);
     const PairInput input{body.x.x.data(),    body.x.y.data(),    body.x.z.data(),    body.v.x.data(),
                           body.v.y.data(),    body.v.z.data(),    body.rest.x.data(), body.rest.y.data(),
                           body.rest.z.data(), body.particle_count(), body.stiffness, body.damping};
@@ -87,11 +87,11 @@ TEST(Inspector, SpringsAndDampersAreTheKernelsForThatParticle) {
 // Sliding on a slope steeper than mu_s allows (gravity tilted, as contact_test.cpp does):
 // dynamic friction, Eq. 25, mu_d times the normal force, against the slide.
 TEST(Inspector, SlidingParticleNamesEq25) {
-    Params p = listing8_params();
+    FlatKeys p = listing8_params();
     p.init_height = 0.0f;
     const double angle = 40.0 * kPi / 180.0;
     p.gravity = {float(9.81 * std::sin(angle)), 0.0f, float(-9.81 * std::cos(angle))};
-    World world(p, points({{0.0f, 0.0f, 0.0f}}));
+    OneBodyWorld world(p, points({{0.0f, 0.0f, 0.0f}}));
     world.run(20);
     const ParticleInspection in = inspect_particle(world, 0, 0);
     EXPECT_EQ(in.friction, FrictionRegime::Sliding);

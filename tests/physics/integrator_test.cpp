@@ -8,8 +8,8 @@
 namespace softbody::test {
 namespace {
 
-Params free_fall_params(Integrator integrator, float g, float dt) {
-    Params p = bare_params();
+FlatKeys free_fall_params(Integrator integrator, float g, float dt) {
+    FlatKeys p = bare_params();
     p.gravity = {0.0f, 0.0f, -g};
     p.dt = dt;
     p.integrator = integrator;
@@ -26,7 +26,7 @@ TEST(FreeFall, ExactDiscreteFormulaForEachIntegrator) {
     const float g = 8.0f, h = 1.0f / 64.0f;
     for (Integrator integrator :
          {Integrator::Verlet, Integrator::SymplecticEuler, Integrator::ExplicitEuler, Integrator::RK4}) {
-        World world(free_fall_params(integrator, g, h), points({{0.0f, 0.0f, 0.0f}}));
+        OneBodyWorld world(free_fall_params(integrator, g, h), points({{0.0f, 0.0f, 0.0f}}));
         for (int n = 1; n <= 1000; ++n) {
             world.tick();
             const double nn = n;
@@ -49,9 +49,9 @@ TEST(FreeFall, ExactDiscreteFormulaForEachIntegrator) {
 TEST(FreeFall, MatchesDiscreteFormulaTightlyAndParabolaLoosely) {
     const double g = 9.81, h = 0.02, z0 = 10.0;
     for (Integrator integrator : {Integrator::Verlet, Integrator::SymplecticEuler}) {
-        Params p = free_fall_params(integrator, float(g), float(h));
+        FlatKeys p = free_fall_params(integrator, float(g), float(h));
         p.init_height = float(z0);
-        World world(p, points({{0.0f, 0.0f, 0.0f}}));
+        OneBodyWorld world(p, points({{0.0f, 0.0f, 0.0f}}));
         for (int n = 1; n <= 200; ++n) {
             world.tick();
             const double z = position(world, 0).z, t = n * h, nn = n;
@@ -80,8 +80,8 @@ TEST(FreeFall, MatchesDiscreteFormulaTightlyAndParabolaLoosely) {
 // x_{n+1} = x_n + (v_n + a h) h, only rounded differently. The dampers are strong (c = 1 kg/s on
 // 276 pairs) so that the body's own vibrations die out and cannot amplify the rounding; the
 // swing about the pins is a regular pendulum motion, which does not amplify it either.
-Params swinging_cloud_params(Integrator integrator) {
-    Params p = listing8_params();
+FlatKeys swinging_cloud_params(Integrator integrator) {
+    FlatKeys p = listing8_params();
     p.ground = false;
     p.init_height = 0.0f;
     p.damping = 1.0f;
@@ -99,15 +99,15 @@ double max_difference(const Vec3Array& a, const Vec3Array& b) {
 
 TEST(Verlet, EqualsSymplecticEulerWithoutContacts) {
     const Mesh mesh = points(random_cloud(24, 7));
-    World verlet(swinging_cloud_params(Integrator::Verlet), mesh);
-    World euler(swinging_cloud_params(Integrator::SymplecticEuler), mesh);
+    OneBodyWorld verlet(swinging_cloud_params(Integrator::Verlet), mesh);
+    OneBodyWorld euler(swinging_cloud_params(Integrator::SymplecticEuler), mesh);
     double worst_x = 0.0, worst_v = 0.0, travelled = 0.0;
     const Vec3 start = position(verlet, 10);
     for (int n = 0; n < 3000; ++n) {
         verlet.tick();
         euler.tick();
-        worst_x = std::max(worst_x, max_difference(verlet.positions(), euler.positions()));
-        worst_v = std::max(worst_v, max_difference(verlet.velocities(), euler.velocities()));
+        worst_x = std::max(worst_x, max_difference(verlet.soft_body(0).x, euler.soft_body(0).x));
+        worst_v = std::max(worst_v, max_difference(verlet.soft_body(0).v, euler.soft_body(0).v));
         travelled = std::max(travelled, double(length(position(verlet, 10) - start)));
     }
     ASSERT_EQ(verlet.status(), Status::Ok);
@@ -126,19 +126,19 @@ TEST(Verlet, EqualsSymplecticEulerWithoutContacts) {
 // before the switch.
 TEST(Verlet, RestartsCleanlyAfterSwitchingIntegrators) {
     const Mesh mesh = points(random_cloud(24, 7));
-    Params verlet_params = swinging_cloud_params(Integrator::Verlet);
-    Params euler_params = swinging_cloud_params(Integrator::SymplecticEuler);
-    World switching(verlet_params, mesh);
-    World euler(euler_params, mesh);
+    FlatKeys verlet_params = swinging_cloud_params(Integrator::Verlet);
+    FlatKeys euler_params = swinging_cloud_params(Integrator::SymplecticEuler);
+    OneBodyWorld switching(verlet_params, mesh);
+    OneBodyWorld euler(euler_params, mesh);
     for (int phase = 0; phase < 4; ++phase) {
-        switching.set_params(phase % 2 == 0 ? verlet_params : euler_params);
+        set_flat(switching, phase % 2 == 0 ? verlet_params : euler_params);
         for (int n = 0; n < 100; ++n) {
             switching.tick();
             euler.tick();
         }
         // As above: rounding-level differences only.
-        EXPECT_LT(max_difference(switching.positions(), euler.positions()), 1e-5) << "after phase " << phase;
-        EXPECT_LT(max_difference(switching.velocities(), euler.velocities()), 2e-5) << "after phase " << phase;
+        EXPECT_LT(max_difference(switching.soft_body(0).x, euler.soft_body(0).x), 1e-5) << "after phase " << phase;
+        EXPECT_LT(max_difference(switching.soft_body(0).v, euler.soft_body(0).v), 2e-5) << "after phase " << phase;
     }
 }
 
@@ -146,14 +146,14 @@ TEST(Verlet, RestartsCleanlyAfterSwitchingIntegrators) {
 // equal and opposite pairs, so total momentum sum m v is constant and the centre of mass moves
 // in a straight line at constant speed.
 TEST(Momentum, ConservedWithoutExternalForces) {
-    Params p = listing8_params();
+    FlatKeys p = listing8_params();
     p.gravity = {0.0f, 0.0f, 0.0f};
     p.ground = false;
     p.drag_coefficient = 0.0f;
     p.init_height = 0.0f;
     p.initial_velocity = {0.3f, 0.1f, -0.2f};
     const std::size_t n = 40;
-    World world(p, points(random_cloud(n, 11)));
+    OneBodyWorld world(p, points(random_cloud(n, 11)));
     // Random velocities: yank three particles about with a 10 N/m grab spring for a few ticks
     // each (an external force), then let go. From then on nothing external acts.
     const std::uint32_t grabbed[3] = {3, 17, 29};
@@ -239,13 +239,13 @@ struct Oscillator {
 };
 
 World oscillator_world(Integrator integrator, const Oscillator& o) {
-    Params p = bare_params();
+    FlatKeys p = bare_params();
     p.particle_mass = float(o.m);
     p.stiffness = float(o.k);
     p.gravity = {0.0f, 0.0f, float(-o.g)};
     p.pinned = {0};
     p.integrator = integrator;
-    return World(p, points({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -float(o.L)}}));
+    return World(one_body(p, points({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -float(o.L)}})));
 }
 
 TEST(Energy, OneSpringOscillatesByTheShadowBoundAndNeverDrifts) {
@@ -297,8 +297,8 @@ TEST(Energy, ExplicitEulerMultipliesOneSpringsEnergyBy1PlusHOmegaSquared) {
 // 5% at omega = 5 rad/s, 10% at the fastest, which carry little of it. The measured total stays
 // within 5% of the energy in play (the largest kinetic plus the largest elastic energy seen,
 // about 440 J here), for as long as it runs.
-Params swinging_cube_params(Integrator integrator) {
-    Params p = listing8_params();
+FlatKeys swinging_cube_params(Integrator integrator) {
+    FlatKeys p = listing8_params();
     p.damping = 0.0f;
     p.drag_coefficient = 0.0f;
     p.ground = false;
@@ -311,7 +311,7 @@ Params swinging_cube_params(Integrator integrator) {
 
 TEST(Energy, ManySpringsStayBoundedUnderVerletAndSymplecticEuler) {
     for (Integrator integrator : {Integrator::Verlet, Integrator::SymplecticEuler}) {
-        World world(swinging_cube_params(integrator), points(cube_corners()));
+        OneBodyWorld world(swinging_cube_params(integrator), points(cube_corners()));
         const double E0 = world.energy().total();
         const int ticks = 50000, window = 10000;  // 1000 s: hundreds of swings
         double worst = 0.0, in_play = 0.0, kinetic = 0.0, elastic = 0.0, first_mean = 0.0, last_mean = 0.0;
@@ -337,7 +337,7 @@ TEST(Energy, ManySpringsStayBoundedUnderVerletAndSymplecticEuler) {
 }
 
 TEST(Energy, ExplicitEulerGainsEnergyUntilStopped) {
-    World world(swinging_cube_params(Integrator::ExplicitEuler), points(cube_corners()));
+    OneBodyWorld world(swinging_cube_params(Integrator::ExplicitEuler), points(cube_corners()));
     const double E0 = world.energy().total();
     world.run(300);
     ASSERT_EQ(world.status(), Status::Ok);

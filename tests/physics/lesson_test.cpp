@@ -28,10 +28,10 @@ struct LessonRun {
 LessonRun run_lesson(std::string_view file, double seconds, const std::map<std::string, std::string>& sets = {}) {
     Scene scene = load_scene(scene_path(file));
     for (const auto& [key, value] : sets) set_scene_key(scene, key, value);
-    World world(make_world_def(scene));
+    World world((scene));
     EXPECT_TRUE(scene.expect.has_value()) << file;
     LessonMeter meter(*scene.expect, world);
-    const auto ticks = std::llround(seconds / double(world.params().dt));
+    const auto ticks = std::llround(seconds / double(world.settings().dt));
     for (long long t = 0; t < ticks && world.status() == Status::Ok; ++t) {
         world.tick();
         meter.observe(world);
@@ -75,7 +75,7 @@ TEST(Lessons, InTheAddendumsOrderAndEachLoads) {
         EXPECT_EQ(lessons()[i].file, expected[i]);
         EXPECT_EQ(lesson_number("some/folder/" + expected[i]), i + 1);
         const Scene scene = load_scene(scene_path(expected[i]));
-        World world(make_world_def(scene));  // builds
+        World world((scene));  // builds
         if (scene.expect) LessonMeter meter(*scene.expect, world);
     }
     EXPECT_EQ(lesson_number("assets/scenes/pile.json"), 0u);
@@ -90,7 +90,7 @@ TEST(Lessons, TitleTextAndExpectLeaveThePhysicsAloneAndRoundTrip) {
         bare.title.clear();
         bare.text.clear();
         bare.expect.reset();
-        World with(make_world_def(scene)), without(make_world_def(bare));
+        World with((scene)), without((bare));
         with.run(100);
         without.run(100);
         EXPECT_EQ(with.state_hash(), without.state_hash()) << lesson.file;
@@ -253,7 +253,7 @@ TEST(Lessons, SphereAndCylinderInertiaFromTrianglesMeetTableOne) {
     for (const char* shape : {R"("shape": "sphere", "radius": 0.3)", R"("shape": "cylinder", "radius": 0.2, "height": 0.9)"}) {
         const std::string text = std::string(R"({"expect": {"kind": "inertia", "body": "b"}, "rigid_bodies": [{"name": "b", )") +
                                  shape + R"(, "mass": 3.0, "position": [0, 0, 2]}]})";
-        World world(make_world_def(parse_scene(text, "inertia.json")));
+        World world((parse_scene(text, "inertia.json")));
         const LessonMeter meter(*parse_scene(text, "inertia.json").expect, world);
         const LessonRun run{meter.comparisons(world), world.status()};
         for (int a = 0; a < 3; ++a) {
@@ -333,7 +333,7 @@ TEST(Lessons, IntermediateAxisFlipsWithTheEllipticPeriod) {
 // A world that goes back (a reset) starts the measurement again: no period straddles it.
 TEST(Lessons, AResetStartsTheMeasurementAgain) {
     Scene scene = load_scene(scene_path("spring.json"));
-    World world(make_world_def(scene));
+    World world((scene));
     LessonMeter meter(*scene.expect, world);
     for (int t = 0; t < 150; ++t) {
         world.tick();

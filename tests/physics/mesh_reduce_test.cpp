@@ -362,20 +362,20 @@ TEST(Reduce, FortyThousandVertices) {
 // budget given as a number, or a mesh under the cap, is what was asked for: no note.
 TEST(Reduce, AllAboveTheCapIsSaidInANote) {
     const Mesh cloud = points(random_cloud(kMaxParticles + 500, 5, 1.0f), "big cloud");
-    Params all;
+    FlatKeys all;
     all.max_particles = 0;
-    const World capped(all, cloud);
-    ASSERT_LE(capped.particle_count(), kMaxParticles);
+    const OneBodyWorld capped(all, cloud);
+    ASSERT_LE(capped.soft_body(0).particle_count(), kMaxParticles);
     ASSERT_EQ(capped.notes().size(), 1u);
     const std::string& note = capped.notes()[0];
     EXPECT_EQ(note, "big cloud: max_particles=all is capped at 20000 particles: its 20500 distinct vertices run on " +
-                        std::to_string(capped.particle_count()) + " (--set max_particles=N, 4 to 20000, for fewer)");
+                        std::to_string(capped.soft_body(0).particle_count()) + " (--set max_particles=N, 4 to 20000, for fewer)");
     EXPECT_EQ(note.find('\n'), std::string::npos);
 
-    Params numbered;
+    FlatKeys numbered;
     numbered.max_particles = 3000;
-    EXPECT_TRUE(World(numbered, cloud).notes().empty());
-    EXPECT_TRUE(World(all, points(random_cloud(500, 5, 1.0f), "small cloud")).notes().empty());
+    EXPECT_TRUE(OneBodyWorld(numbered, cloud).notes().empty());
+    EXPECT_TRUE(OneBodyWorld(all, points(random_cloud(500, 5, 1.0f), "small cloud")).notes().empty());
 }
 
 }  // namespace

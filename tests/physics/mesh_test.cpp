@@ -127,8 +127,8 @@ TEST(LoadMesh, PointCloudWithoutFacesIsValid) {
     EXPECT_EQ(mesh.particle_count(), 4u);
     EXPECT_EQ(mesh.triangle_count(), 0u);
     EXPECT_EQ(mesh.source, path);
-    World world(Params{}, mesh);
-    EXPECT_EQ(world.spring_count(), 6u);
+    OneBodyWorld world(FlatKeys{}, mesh);
+    EXPECT_EQ(world.soft_body(0).spring_count(), 6u);
     const std::string off = dir.write("cloud.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
     EXPECT_EQ(load_mesh(off).particle_count(), 3u);
 }

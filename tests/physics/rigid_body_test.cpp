@@ -12,7 +12,7 @@ namespace {
 
 // A world from scene text (the keys of README.md's "Scene files").
 World world_of(const std::string& json, int threads = 1) {
-    return World(make_world_def(parse_scene(json, "test.json")), WorldOptions{threads});
+    return World((parse_scene(json, "test.json")), WorldOptions{threads});
 }
 
 // Body-axes angular velocity R^T w of rigid body i.
@@ -378,8 +378,8 @@ TEST(RigidDeterminism, MixedSceneHashIsTheSameAtAnyThreadCount) {
         " \"stiffness\": 20, \"damping\": 0.2}]}";
     const auto hash_after = [&](int threads) {
         // The scene's rigid bodies, and a soft body of 550 random points (three kernel blocks).
-        WorldDef def = make_world_def(parse_scene(scene, "mixed.json"));
-        def.soft_bodies.push_back(SoftBodyDef{"body", def.params, points(random_cloud(550, 31, 1.5f))});
+        WorldDef def = (parse_scene(scene, "mixed.json"));
+        def.soft_bodies.push_back(flat_body_of(scene, points(random_cloud(550, 31, 1.5f))));
         World world(std::move(def), WorldOptions{threads});
         world.run(150);
         EXPECT_EQ(world.status(), Status::Ok);

@@ -15,7 +15,7 @@ namespace {
 constexpr double kG = 9.81;
 constexpr double kRadius = 0.1;
 
-World world_of(const std::string& json) { return World(make_world_def(parse_scene(json, "test.json")), WorldOptions{1}); }
+World world_of(const std::string& json) { return World((parse_scene(json, "test.json")), WorldOptions{1}); }
 
 // A solid ball of radius 0.1 m resting on the ground, moving at v (m/s, along x) and turning at
 // w (rad/s, world axes).

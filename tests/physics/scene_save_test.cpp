@@ -43,11 +43,16 @@ std::vector<std::string> names_in(const fs::path& folder) {
     return names;
 }
 
-Params new_params() {
-    Params p;
-    p.stiffness = 20.0f;
-    p.pinned = {1, 2, 3};
-    return p;
+Scene new_params() {
+    Scene scene;
+    SoftBodyDef body;
+    body.name = "body";
+    body.mesh = "cube:2";
+    body.stiffness = 20.0f;
+    body.pinned = {1, 2, 3};
+    scene.soft_bodies.push_back(body);
+    scene.settings.dt = 0.01f;
+    return scene;
 }
 
 // In a child: saves and returns 0 when it fails with InputError naming the file and `reason`,

@@ -32,7 +32,7 @@ Vec3d position_of(const World& world, std::size_t b) { return world.rigid_motion
 // The pyramid: it stands 10 s, its top box within 1 cm of where it started, no box
 // faster than 1 cm/s at any point after 2 s; and it is at rest, so it all sleeps.
 TEST(Sleep, PyramidStandsTenSecondsAndSleeps) {
-    World world(make_world_def(generated_scene("pyramid:10")));
+    World world((generated_scene("pyramid:10")));
     ASSERT_EQ(world.rigid_body_count(), 385u);
     std::size_t top = 0;
     for (std::size_t b = 1; b < world.rigid_body_count(); ++b) {
@@ -86,7 +86,7 @@ Scene box_pile() { return generated_scene("boxes:100"); }
 struct Pile {
     Scene scene = box_pile();
     std::unique_ptr<World> world;
-    explicit Pile(int threads = 1) : world(std::make_unique<World>(make_world_def(scene), WorldOptions{threads})) {}
+    explicit Pile(int threads = 1) : world(std::make_unique<World>((scene), WorldOptions{threads})) {}
     std::size_t throw_ball() {
         Vec3d centre;
         double top = 0.0;
@@ -107,13 +107,8 @@ struct Pile {
         ball.rolling_resistance = 0.01f;
         ball.position = Vec3d{centre.x, centre.y, top + 0.6};
         ball.velocity = Vec3d{0.0, 0.0, -4.0};
-        Scene more = scene;
-        more.rigid_bodies.push_back(ball);
-        const WorldSnapshot now = world->snapshot();
-        auto bigger = std::make_unique<World>(make_world_def(more), WorldOptions{world->threads()});
-        bigger->restore(now, true);
-        world = std::move(bigger);
-        scene = more;
+        world->create_rigid_body(ball);  // into the running world, the pile going on where it is
+        scene.rigid_bodies.push_back(ball);
         return world->rigid_body_count() - 1;
     }
 };
@@ -174,7 +169,7 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
 // facets' corners a few millimetres up, a cylinder tipped onto those and was pushed back every
 // sixth tick, for ever, and 47 of the 100 slept; manifold.h.)
 TEST(Sleep, MixedPileOfBoxesBallsCylindersAndHullsSleeps) {
-    World world(make_world_def(generated_scene("pile:100")), WorldOptions{1});
+    World world((generated_scene("pile:100")), WorldOptions{1});
     world.run(10 * kTicksPerSecond);
     ASSERT_EQ(world.status(), Status::Ok) << world.divergence();
     std::printf("pile:100 after 10 s: %zu of %zu asleep\n", world.sleeping_count(), dynamic_bodies(world));
@@ -223,7 +218,7 @@ TEST(Sleep, RestoredSnapshotReplaysTheSameSleep) {
     EXPECT_EQ(world.sleeping_count(), sleeping);
     for (std::size_t b = 0; b < asleep.size(); ++b) EXPECT_EQ(world.rigid_asleep(b), asleep[b]) << b;
     // And in another world built from the same scene.
-    World other(make_world_def(pile.scene));
+    World other((pile.scene));
     other.restore(then);
     other.run(5 * kTicksPerSecond);
     EXPECT_EQ(other.state_hash(), hash);
@@ -234,8 +229,8 @@ TEST(Sleep, RestoredSnapshotReplaysTheSameSleep) {
 // Their rest times never fill, nothing sleeps, and every bit is as with sleeping off.
 TEST(Sleep, SceneInConstantMotionRunsAsWithSleepingOff) {
     Scene scene;
-    scene.params.dynamic_friction = 0.0f;
-    scene.params.static_friction = 0.0f;
+    scene.settings.dynamic_friction = 0.0f;
+    scene.settings.static_friction = 0.0f;
     const auto add = [&](ShapeKind shape, Vec3d at, Vec3d v, Vec3d w) {
         RigidBodyDef def;
         def.name = "body" + std::to_string(scene.rigid_bodies.size());
@@ -254,8 +249,8 @@ TEST(Sleep, SceneInConstantMotionRunsAsWithSleepingOff) {
     add(ShapeKind::Sphere, {-3, 0, 0.2}, {0.5, 0.5, 0}, {0, 0, 0});
     add(ShapeKind::Box, {6, 6, 400}, {0, 0, 0}, {0, 0, 0});
     Scene off = scene;
-    off.params.sleeping = false;
-    World on_world(make_world_def(scene)), off_world(make_world_def(off));
+    off.settings.sleeping = false;
+    World on_world((scene)), off_world((off));
     for (std::uint64_t t = 0; t < 8 * kTicksPerSecond; ++t) {
         on_world.tick();
         off_world.tick();
@@ -271,14 +266,14 @@ TEST(Sleep, SceneInConstantMotionRunsAsWithSleepingOff) {
 // stop: it leans on nothing, so it never sleeps however slow it is.
 TEST(Sleep, BodyDriftingThroughEmptySpaceNeverSleeps) {
     Scene scene;
-    scene.params.gravity = {0.0f, 0.0f, 0.0f};
-    scene.params.ground = false;
+    scene.settings.gravity = {0.0f, 0.0f, 0.0f};
+    scene.settings.ground = false;
     RigidBodyDef box;
     box.name = "drifter";
     box.size = Vec3d{0.5, 0.5, 0.5};
     box.velocity = Vec3d{0.005, 0.0, 0.0};
     scene.rigid_bodies.push_back(box);
-    World world(make_world_def(scene));
+    World world((scene));
     world.run(5 * kTicksPerSecond);
     EXPECT_FALSE(world.rigid_asleep(0));
     EXPECT_GE(world.rigid_rest_time(0), 4.9);  // slow all along: only leaning on nothing keeps it awake
@@ -297,7 +292,7 @@ TEST(Sleep, GrabKeysAndMaterialWakeAndTheKeyTurnsItOff) {
     box.name = "on_top";
     box.position = Vec3d{0.0, 0.0, 0.75};
     scene.rigid_bodies.push_back(box);
-    World world(make_world_def(scene));
+    World world((scene));
     world.run(kTicksPerSecond);
     ASSERT_TRUE(world.rigid_asleep(0));
     ASSERT_TRUE(world.rigid_asleep(1));  // one island: the crate and the box on it
@@ -315,24 +310,24 @@ TEST(Sleep, GrabKeysAndMaterialWakeAndTheKeyTurnsItOff) {
     world.run(kTicksPerSecond);
     ASSERT_TRUE(world.rigid_asleep(1));
 
-    world.set_rigid_material(0, 0.5f, std::nullopt);
+    set_material(world, 0, 0.5f, std::nullopt);
     EXPECT_FALSE(world.rigid_asleep(0));
     EXPECT_FALSE(world.rigid_asleep(1));
     world.run(kTicksPerSecond);
     ASSERT_TRUE(world.rigid_asleep(0));
 
-    Params params = world.params();
+    FlatKeys params = flat_keys(world);
     params.dynamic_friction = 0.5f;
-    world.set_params(params);
+    set_flat(world, params);
     EXPECT_EQ(world.sleeping_count(), 0u);
-    world.set_params(params);  // the same keys again: nothing changed, nothing to wake for
+    set_flat(world, params);  // the same keys again: nothing changed, nothing to wake for
     world.run(kTicksPerSecond);
     ASSERT_EQ(world.sleeping_count(), 2u);
-    world.set_params(params);
+    set_flat(world, params);
     EXPECT_EQ(world.sleeping_count(), 2u);
 
     params.sleeping = false;
-    world.set_params(params);
+    set_flat(world, params);
     EXPECT_EQ(world.sleeping_count(), 0u);
     world.run(3 * kTicksPerSecond);
     EXPECT_EQ(world.sleeping_count(), 0u);
@@ -342,14 +337,14 @@ TEST(Sleep, GrabKeysAndMaterialWakeAndTheKeyTurnsItOff) {
 // A soft body landing on a sleeping box wakes it (soft bodies never sleep).
 TEST(Sleep, SoftBodyLandingOnASleepingBoxWakesIt) {
     Scene scene = generated_scene("ball:1");
-    scene.params.position = Vec3{0.0f, 0.0f, 4.0f};
-    scene.params.stiffness = 2000.0f;
+    scene.soft_bodies[0].position = Vec3{0.0f, 0.0f, 4.0f};
+    scene.soft_bodies[0].stiffness = 2000.0f;
     RigidBodyDef box;
     box.name = "crate";
     box.size = Vec3d{1.0, 1.0, 0.5};
     box.position = Vec3d{0.0, 0.0, 0.25};
     scene.rigid_bodies.push_back(box);
-    World world(make_world_def(scene));
+    World world((scene));
     bool slept = false, woke = false;
     for (std::uint64_t t = 0; t < 2 * kTicksPerSecond && !woke; ++t) {
         world.tick();
@@ -360,18 +355,19 @@ TEST(Sleep, SoftBodyLandingOnASleepingBoxWakesIt) {
     EXPECT_TRUE(slept);
     EXPECT_TRUE(woke);
     float lowest = 1e9f;
-    for (std::size_t i = 0; i < world.particle_count(); ++i) lowest = std::min(lowest, world.positions()[i].z);
+    for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) lowest = std::min(lowest, world.soft_body(0).x[i].z);
     EXPECT_LT(lowest, 1.0f);  // it woke as the ball reached it, not while it fell from 3.5 m
 }
 
 TEST(Sleep, KeyIsCheckedLikeAnyOther) {
-    Params p;
-    set_param(p, "sleeping", "false");
+    const KeyInfo& info = *find_key(KeyOwner::World, "sleeping");
+    WorldSettings p;
+    set_key(p, info, parse_key_text(info, "false"));
     EXPECT_FALSE(p.sleeping);
-    EXPECT_EQ(param_text(p, "sleeping"), "false");
-    EXPECT_REFUSED_NAMING(set_param(p, "sleeping", "maybe"), "'sleeping'");
+    EXPECT_EQ(key_text(info, get_key(p, info)), "false");
+    EXPECT_REFUSED_NAMING(parse_key_text(info, "maybe"), "'sleeping'");
     EXPECT_REFUSED_NAMING(parse_scene("{\"sleeping\": 1}", "s.json"), "s.json:1", "'sleeping'");
-    EXPECT_FALSE(parse_scene("{\"sleeping\": false}", "s.json").params.sleeping);
+    EXPECT_FALSE(parse_scene("{\"sleeping\": false}", "s.json").settings.sleeping);
 }
 
 }  // namespace

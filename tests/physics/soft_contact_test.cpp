@@ -14,11 +14,11 @@ namespace {
 std::string scene_path(const std::string& name) { return std::string(SOFTBODY_ASSETS) + "/scenes/" + name; }
 
 World world_of_file(const std::string& name, int threads = 1) {
-    return World(make_world_def(load_scene(scene_path(name))), WorldOptions{threads});
+    return World((load_scene(scene_path(name))), WorldOptions{threads});
 }
 
 World world_of(const std::string& json, int threads = 1) {
-    return World(make_world_def(parse_scene(json, "test.json")), WorldOptions{threads});
+    return World((parse_scene(json, "test.json")), WorldOptions{threads});
 }
 
 Vec3d centre(const World& world, std::size_t b) {
@@ -216,7 +216,7 @@ TEST(SoftContact, ContactsAreWithTheNearestTriangle) {
     World sliding = world_of(scene("0", "1"));
     for (int t = 0; t < 20; ++t) {
         sliding.tick();
-        const double h = double(sliding.params().dt) / double(sliding.substeps_in_use());
+        const double h = double(sliding.settings().dt) / double(sliding.substeps_in_use());
         EXPECT_LT(worst_choice(sliding), 2e-4 + 4.0 * 1.05 * h) << "tick " << t;
         // Landed in the first tick: from then on held by a dozen contacts or more.
         if (t > 0) {
@@ -279,10 +279,10 @@ int crossings(const World& world, std::size_t b, SideRecord& record) {
 // through the sheet; without it, the same fall lets some through (the check can fail).
 TEST(SoftContact, FoldedSheetNeverCrossesItself) {
     Scene scene = load_scene(scene_path("fold.json"));
-    ASSERT_TRUE(scene.soft_bodies.at(0).params.self_collision);
-    World with(make_world_def(scene));
-    scene.soft_bodies[0].params.self_collision = false;
-    World without(make_world_def(scene));
+    ASSERT_TRUE(scene.soft_bodies.at(0).self_collision);
+    World with((scene));
+    scene.soft_bodies[0].self_collision = false;
+    World without((scene));
     SideRecord r_with, r_without;
     int crossed_with = 0, crossed_without = 0;
     bool touched = false;
@@ -417,8 +417,8 @@ TEST(SoftBodyPlacement, BadValuesAreRefusedWithBodyAndKey) {
     const Scene read = parse_scene(scene("\"position\": [0, 0, 1], \"color\": [1, 0.5, 0]"), "s.json");
     const Scene again = parse_scene(scene_to_json(read), "s.json");
     ASSERT_EQ(again.soft_bodies.size(), 1u);
-    EXPECT_EQ(again.soft_bodies[0].params.position, read.soft_bodies[0].params.position);
-    EXPECT_EQ(again.soft_bodies[0].params.color, read.soft_bodies[0].params.color);
+    EXPECT_EQ(again.soft_bodies[0].position, read.soft_bodies[0].position);
+    EXPECT_EQ(again.soft_bodies[0].color, read.soft_bodies[0].color);
 }
 
 }  // namespace

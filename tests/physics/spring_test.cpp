@@ -22,8 +22,8 @@ namespace {
 
 constexpr float kL = 1.0f;  // m, rest length
 
-Params hanging_params(float m, float k, float c) {
-    Params p = bare_params();
+FlatKeys hanging_params(float m, float k, float c) {
+    FlatKeys p = bare_params();
     p.particle_mass = m;
     p.stiffness = k;
     p.damping = c;
@@ -50,7 +50,7 @@ TEST(HangingMass, RestsAtStretchMgOverK) {
     for (const auto& [m, k] : {std::pair{2.0f, 50.0f}, std::pair{0.5f, 20.0f}}) {
         // c = 2 kg/s: decay rate c/(2m) >= 0.5 /s, so after 40 s the start-up oscillation of
         // amplitude m g / k < 0.4 m has shrunk by e^-20 (below 1e-9 m).
-        World world(hanging_params(m, k, 2.0f), hanging_mesh());
+        OneBodyWorld world(hanging_params(m, k, 2.0f), hanging_mesh());
         world.run(2000);
         ASSERT_EQ(world.status(), Status::Ok);
         const double stretch = -double(position(world, 1).z) - kL;
@@ -69,7 +69,7 @@ TEST(HangingMass, RestsAtStretchMgOverK) {
 
 TEST(HangingMass, PeriodIsTwoPiSqrtMOverK) {
     const double m = 2.0, k = 50.0, g = 9.81, h = 0.02;
-    World world(hanging_params(float(m), float(k), 0.0f), hanging_mesh());
+    OneBodyWorld world(hanging_params(float(m), float(k), 0.0f), hanging_mesh());
     const double z_eq = -kL - m * g / k;
     const int ticks = 1300;  // about 20 periods of 1.2566 s
     const std::vector<double> u = displacement(world, ticks, z_eq);
@@ -113,7 +113,7 @@ TEST(HangingMass, PeriodIsTwoPiSqrtMOverK) {
 
 TEST(HangingMass, DamperDecaysAsExpOfMinusCtOver2m) {
     const double m = 2.0, k = 50.0, c = 0.4, g = 9.81, h = 0.02;
-    World world(hanging_params(float(m), float(k), float(c)), hanging_mesh());
+    OneBodyWorld world(hanging_params(float(m), float(k), float(c)), hanging_mesh());
     const double z_eq = -kL - m * g / k;
     const std::vector<double> u = displacement(world, 900, z_eq);  // 18 s: e^-1.8 of the start
     ASSERT_EQ(world.status(), Status::Ok);

@@ -23,16 +23,16 @@ struct Dense {
 };
 
 Dense mass_weighted_G(const World& world) {
-    const std::size_t N = world.particle_count();
+    const std::size_t N = world.soft_body(0).particle_count();
     std::vector<std::size_t> free_index(N, SIZE_MAX);
     std::size_t F = 0;
     for (std::size_t i = 0; i < N; ++i) {
-        if (world.inverse_masses()[i] != 0.0f) free_index[i] = F++;
+        if (world.soft_body(0).inv_mass[i] != 0.0f) free_index[i] = F++;
     }
     Dense A;
     A.n = 3 * F;
     A.a.assign(A.n * A.n, 0.0);
-    const Vec3Array& r = world.rest_positions();
+    const Vec3Array& r = world.soft_body(0).rest;
     for (std::size_t i = 0; i < N; ++i) {
         for (std::size_t j = i + 1; j < N; ++j) {
             double d[3] = {double(r.x[j]) - r.x[i], double(r.y[j]) - r.y[i], double(r.z[j]) - r.z[i]};
@@ -54,7 +54,7 @@ Dense mass_weighted_G(const World& world) {
         }
     }
     // Equal masses: M^-1 G = G / m, still symmetric.
-    const double inv_m = 1.0 / double(world.params().particle_mass);
+    const double inv_m = 1.0 / double(world.soft_body(0).def.particle_mass);
     for (double& value : A.a) value *= inv_m;
     return A;
 }
@@ -97,8 +97,8 @@ std::pair<double, double> power_iteration(Dense& A) {
     return {lambda, std::sqrt(residual) / lambda};
 }
 
-Params cloud_params(float m, std::vector<std::uint32_t> pinned) {
-    Params p = listing8_params();
+FlatKeys cloud_params(float m, std::vector<std::uint32_t> pinned) {
+    FlatKeys p = listing8_params();
     p.particle_mass = m;
     p.pinned = std::move(pinned);
     return p;
@@ -107,7 +107,7 @@ Params cloud_params(float m, std::vector<std::uint32_t> pinned) {
 TEST(Stability, LambdaMaxIsNOverMForEqualMasses) {
     for (const float m : {1.0f, 0.25f}) {
         const std::size_t N = 20;
-        World world(cloud_params(m, {}), points(random_cloud(N, 3)));
+        OneBodyWorld world(cloud_params(m, {}), points(random_cloud(N, 3)));
         Dense A = mass_weighted_G(world);
         const auto [lambda, residual] = power_iteration(A);
         // Power iteration converged to an eigenvalue: the residual bounds its error.
@@ -118,7 +118,7 @@ TEST(Stability, LambdaMaxIsNOverMForEqualMasses) {
         EXPECT_NEAR(lambda, claimed, 1e-6 * claimed) << "m = " << m;
         // And World reports it: omega_max^2 = k lambda_max, gamma_max = c lambda_max.
         const Stability s = world.stability();
-        const Params& p = world.params();
+        const FlatKeys& p = flat_keys(world);
         EXPECT_NEAR(s.omega_max * s.omega_max, p.stiffness * lambda, 1e-6 * p.stiffness * lambda);
         EXPECT_NEAR(s.gamma_max, p.damping * lambda, 1e-6 * p.damping * lambda);
     }
@@ -128,12 +128,12 @@ TEST(Stability, EstimateBoundsTheFastestModeWithPins) {
     const std::size_t N = 20;
     for (const std::vector<std::uint32_t>& pinned :
          {std::vector<std::uint32_t>{0}, std::vector<std::uint32_t>{0, 7}, std::vector<std::uint32_t>{1, 2, 3, 4, 5}}) {
-        World world(cloud_params(1.0f, pinned), points(random_cloud(N, 3)));
+        OneBodyWorld world(cloud_params(1.0f, pinned), points(random_cloud(N, 3)));
         Dense A = mass_weighted_G(world);
         const auto [lambda, residual] = power_iteration(A);
         ASSERT_LT(residual, 1e-9);
         const Stability s = world.stability();
-        const double estimate = s.omega_max * s.omega_max / world.params().stiffness;
+        const double estimate = s.omega_max * s.omega_max / world.soft_body(0).def.stiffness;
         // Pinning removes rows and columns of the symmetric G / m: by Cauchy interlacing its
         // largest eigenvalue cannot rise, so N/m bounds it (1e-9 for rounding).
         EXPECT_LE(lambda, estimate * (1.0 + 1e-9)) << pinned.size() << " pinned";
@@ -146,7 +146,7 @@ TEST(Stability, EstimateBoundsTheFastestModeWithPins) {
 // The bound N (k h^2 + 2 c h) < 4 m: with Listing 8's constants, N < 500.
 TEST(Stability, Listing8ConstantsAreStableBelow500Particles) {
     for (const std::size_t N : {490u, 510u}) {
-        World world(listing8_params(), points(random_cloud(N, 17, 2.0f)));
+        OneBodyWorld world(listing8_params(), points(random_cloud(N, 17, 2.0f)));
         const Stability s = world.stability();
         // The fastest mode: h omega_eff = sqrt(N (k h^2 + 2 c h)) against the limit 2.
         const double expected = std::sqrt(double(N) * (10.0 * 0.02 * 0.02 + 2.0 * 0.1 * 0.02));
@@ -161,9 +161,9 @@ TEST(Stability, Listing8ConstantsAreStableBelow500Particles) {
 // A 600-particle cloud with Listing 8's constants at one substep is past the limit: it must
 // blow up, be caught, say why and what to change, and never show a NaN.
 TEST(Divergence, DetectedAndExplained) {
-    Params p = listing8_params();
+    FlatKeys p = listing8_params();
     ASSERT_EQ(p.substeps, 1);
-    World world(p, points(random_cloud(600, 23, 1.5f)));
+    OneBodyWorld world(p, points(random_cloud(600, 23, 1.5f)));
     ASSERT_FALSE(world.stability().stable);
     int n = 0;
     for (; n < 2000 && world.status() == Status::Ok; ++n) {
@@ -183,9 +183,9 @@ TEST(Divergence, DetectedAndExplained) {
 }
 
 TEST(Divergence, SubstepsItSuggestsKeepTheSameCloudStable) {
-    Params p = listing8_params();
+    FlatKeys p = listing8_params();
     p.substeps = 2;
-    World world(p, points(random_cloud(600, 23, 1.5f)));
+    OneBodyWorld world(p, points(random_cloud(600, 23, 1.5f)));
     ASSERT_TRUE(world.stability().stable);
     world.run(250);  // through the landing, which is what set the first run off
     EXPECT_EQ(world.status(), Status::Ok) << world.divergence();
@@ -202,13 +202,13 @@ TEST(Stability, AutomaticSubstepsAreStableAtEveryStiffnessAndDamping) {
     for (Integrator integrator : {Integrator::Verlet, Integrator::SymplecticEuler, Integrator::RK4, Integrator::ExplicitEuler}) {
         for (float k : {2.0f, 15.0f, 60.0f, 300.0f}) {
             for (float c : {0.005f, 0.05f, 0.2f, 0.5f, 2.0f}) {
-                Params p = listing8_params();
+                FlatKeys p = listing8_params();
                 p.integrator = integrator;
                 p.auto_substeps = true;
                 p.stiffness = k;
                 p.damping = c;
                 p.particle_mass = 0.05f;
-                const World world(p, points(random_cloud(98, 7, 0.25f)));
+                const OneBodyWorld world(p, points(random_cloud(98, 7, 0.25f)));
                 const Stability s = world.stability();
                 if (s.substeps_needed == 0) {
                     // None is enough: only explicit Euler's limit c >= h k (whatever the mode)

@@ -21,8 +21,10 @@
 
 #include "physics/error.h"
 #include "physics/mesh.h"
-#include "physics/params.h"
+#include "physics/keys.h"
+#include "physics/scene_io.h"
 #include "physics/world.h"
+#include "one_body_world.h"
 
 namespace softbody::test {
 
@@ -56,10 +58,23 @@ inline std::vector<Vec3> cube_corners(float side = 1.0f) {
     return out;
 }
 
+// The soft body keys a scene's JSON gives at its top level (the old flat form), as a soft body
+// named "body" of `mesh`: those keys make that body when the JSON gives a "mesh", and are
+// ignored without one; tests that add a body of their own points take them from here.
+inline SoftBodyDef flat_body_of(const std::string& json, const Mesh& mesh) {
+    // The keys' defaults first: a key the JSON gives again at its top level replaces them.
+    const Scene with_mesh =
+        parse_scene("{\"mesh\": \"cloud:4\", \"scale\": 1, \"up_axis\": \"z\", " + json.substr(json.find('{') + 1), "test.json");
+    SoftBodyDef body = with_mesh.soft_bodies.front();
+    body.mesh = mesh.source;
+    body.geometry = std::make_shared<const Mesh>(mesh);
+    return body;
+}
+
 // Parameters with nothing acting: no gravity, springs, dampers, drag or ground, and the mesh
 // left where it is (init_height 0). Each test switches on what it examines.
-inline Params bare_params() {
-    Params p;
+inline FlatKeys bare_params() {
+    FlatKeys p;
     p.auto_substeps = false;  // one step a tick, as Listing 8 takes it
     p.init_height = 0.0f;
     p.gravity = {0.0f, 0.0f, 0.0f};
@@ -73,17 +88,17 @@ inline Params bare_params() {
 // Listing 8's constants as this project's defaults hold them (m 1 kg, k 10 N/m, c 0.1 kg/s,
 // g 9.81 m/s^2 down, dt 0.02 s, ground on), with Listing 8's one step a tick (the project's
 // default picks substeps for stability). Asserted once in params_test.cpp.
-inline Params listing8_params() {
-    Params p;
+inline FlatKeys listing8_params() {
+    FlatKeys p;
     p.auto_substeps = false;
     return p;
 }
 
-inline Vec3 position(const World& world, std::size_t i) { return world.positions()[i]; }
-inline Vec3 velocity(const World& world, std::size_t i) { return world.velocities()[i]; }
+inline Vec3 position(const World& world, std::size_t i) { return world.soft_body(0).x[i]; }
+inline Vec3 velocity(const World& world, std::size_t i) { return world.soft_body(0).v[i]; }
 
 inline bool all_finite(const World& world) {
-    for (std::size_t i = 0; i < world.particle_count(); ++i) {
+    for (std::size_t i = 0; i < world.soft_body(0).particle_count(); ++i) {
         if (!is_finite(position(world, i)) || !is_finite(velocity(world, i))) return false;
     }
     return true;

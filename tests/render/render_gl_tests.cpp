@@ -8,11 +8,14 @@
 
 #include "body_view.h"
 #include "offscreen_context.h"
+#include "../physics/one_body_world.h"
 #include "physics/world.h"
 #include "render/renderer.h"
 #include "render/shader.h"
 
 namespace softbody {
+using test::FlatKeys;
+using test::OneBodyWorld;
 namespace {
 
 constexpr int kW = 160, kH = 120;
@@ -33,8 +36,8 @@ protected:
 std::unique_ptr<app::OffscreenContext> RendererTest::context_;
 std::unique_ptr<render::Renderer> RendererTest::renderer_;
 
-Params falling_cube() {
-    Params p;
+FlatKeys falling_cube() {
+    FlatKeys p;
     p.mesh = SOFTBODY_ASSETS_DIR "/meshes/cube.obj";
     p.init_height = 1.0f;
     p.particle_mass = 0.1f;
@@ -76,7 +79,7 @@ TEST_F(RendererTest, LinkErrorNamesBothFiles) {
 }
 
 TEST_F(RendererTest, DrawingTwiceGivesTheSamePixels) {
-    World world(falling_cube(), load_mesh(falling_cube().mesh));
+    OneBodyWorld world(falling_cube(), load_mesh(falling_cube().mesh));
     world.run(10);
     renderer_->draw(frame_of(world), kW, kH);
     const render::Image a = renderer_->read_back();
@@ -88,7 +91,7 @@ TEST_F(RendererTest, DrawingTwiceGivesTheSamePixels) {
 }
 
 TEST_F(RendererTest, RenderingNeverChangesTheSimulation) {
-    World world(falling_cube(), load_mesh(falling_cube().mesh));
+    OneBodyWorld world(falling_cube(), load_mesh(falling_cube().mesh));
     world.run(20);
     const std::uint64_t before = world.state_hash();
     render::Frame frame = frame_of(world, 0.5f);
@@ -98,7 +101,7 @@ TEST_F(RendererTest, RenderingNeverChangesTheSimulation) {
 }
 
 TEST_F(RendererTest, LeavesGlStateAtTheDefaults) {
-    World world(falling_cube(), load_mesh(falling_cube().mesh));
+    OneBodyWorld world(falling_cube(), load_mesh(falling_cube().mesh));
     render::Frame frame = frame_of(world);
     frame.appearance.body = render::BodyStyle::Ghost;
     frame.overlays.springs = true;
@@ -116,10 +119,10 @@ TEST_F(RendererTest, LeavesGlStateAtTheDefaults) {
 }
 
 TEST_F(RendererTest, InterpolatesBetweenTicks) {
-    World world(falling_cube(), load_mesh(falling_cube().mesh));
+    OneBodyWorld world(falling_cube(), load_mesh(falling_cube().mesh));
     world.run(10);
     // alpha = 0 draws the previous tick: the same picture as a world one tick behind.
-    World behind(falling_cube(), load_mesh(falling_cube().mesh));
+    OneBodyWorld behind(falling_cube(), load_mesh(falling_cube().mesh));
     behind.run(9);
     renderer_->draw(frame_of(behind), kW, kH);
     const render::Image previous = renderer_->read_back();
@@ -130,9 +133,9 @@ TEST_F(RendererTest, InterpolatesBetweenTicks) {
 }
 
 TEST_F(RendererTest, APointCloudDrawsWithoutASurface) {
-    Params p = falling_cube();
+    FlatKeys p = falling_cube();
     p.mesh = SOFTBODY_SOURCE_DIR "/tests/render/meshes/lattice.off";
-    World world(p, load_mesh(p.mesh));
+    OneBodyWorld world(p, load_mesh(p.mesh));
     render::Frame frame = frame_of(world);
     frame.overlays.particles = true;
     renderer_->draw(frame, kW, kH);

@@ -49,7 +49,7 @@ Mesh generated_mesh(std::string_view name);
 // apart, so the file reader reads files and knows no names.
 Mesh open_mesh(const std::string& name);
 
-// The scene a name makes, over `base` (its world keys); InputError as above.
-Scene generated_scene(std::string_view name, const Scene& base = {});
+// The scene a name makes; InputError as above. A soft body it holds is named "body".
+Scene generated_scene(std::string_view name);
 
 }  // namespace softbody

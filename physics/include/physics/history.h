@@ -2,9 +2,10 @@
 //
 // Two records, kept for the last `capacity_ticks` ticks:
 //   - a keyframe (World::snapshot) every `keyframe_every` ticks, and one more wherever something
-//     the inputs below cannot replay happened (a pin set or freed);
-//   - the inputs of every tick: the grab and the live settings (the keys of params.h, each rigid
-//     body's restitution and friction) the tick ran with.
+//     the inputs below cannot replay happened (a pin set or freed, a body or spring made or
+//     unmade);
+//   - the inputs of every tick: the grab and the keys (the world's settings and every body's
+//     and spring's definition, keys.h) the tick ran with.
 // Going to tick T restores the last keyframe at or before T and runs the ticks between with their
 // recorded inputs, so the world at T is bit for bit the one that was there. Playing on from the
 // past replays the recorded inputs to the end of the record, then goes on live: when nothing
@@ -24,7 +25,6 @@
 #include <optional>
 #include <vector>
 
-#include "physics/params.h"
 #include "physics/world.h"
 
 namespace softbody {
@@ -67,11 +67,7 @@ public:
     std::uint64_t capacity_ticks() const { return capacity_ticks_; }
 
 private:
-    struct Settings {
-        Params params;
-        std::vector<std::optional<float>> restitution, friction;  // each rigid body's
-        bool operator==(const Settings&) const = default;
-    };
+    using Settings = WorldDef;  // the keys, as World::def() gives them
     struct TickInputs {
         std::optional<Grab> grab;
         std::shared_ptr<const Settings> settings;

@@ -5,29 +5,10 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string>
-
+#include "physics/defs.h"
 #include "physics/vec3.h"
 
 namespace softbody {
-
-// An end as a scene file names it: { "body": NAME, "point": [x, y, z] } on a rigid body,
-// { "body": NAME, "vertex": K } on a soft body, { "point": [x, y, z] } fixed in the world.
-struct SpringEndDef {
-    std::string body;             // empty: the world
-    std::optional<Vec3d> point;   // body axes from the centre of mass (rigid), or world (no body)
-    std::optional<std::int64_t> vertex;  // a soft body's vertex, numbered as in its file from 0
-    bool operator==(const SpringEndDef&) const = default;
-};
-
-struct SpringDef {
-    SpringEndDef a, b;
-    std::optional<double> stiffness;    // k, N/m (required)
-    double damping = 0.0;               // c, kg/s
-    std::optional<double> rest_length;  // l0, m (default: the ends' distance at the start)
-    bool operator==(const SpringDef&) const = default;
-};
 
 // An end once the names are resolved: indices, not names or pointers.
 struct LinkEnd {

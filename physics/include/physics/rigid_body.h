@@ -21,15 +21,13 @@
 #include <vector>
 
 #include "physics/convex_hull.h"
+#include "physics/defs.h"
 #include "physics/mat3.h"
 #include "physics/mesh.h"
 #include "physics/quat.h"
 #include "physics/vec3.h"
 
 namespace softbody {
-
-enum class ShapeKind { Box, Sphere, Cylinder, Mesh };
-std::string_view to_string(ShapeKind kind);
 
 // Listing 10's layout of one body's thirteen numbers in the flat state array.
 namespace rigid {
@@ -39,52 +37,6 @@ inline constexpr int X = 3;   // centre-of-mass position, m
 inline constexpr int L = 6;   // angular momentum about the centre of mass, kg m^2/s
 inline constexpr int Q = 9;   // orientation quaternion w, x, y, z (body to world)
 }  // namespace rigid
-
-// A rigid body as a scene file describes it (see README.md, "Rigid bodies"). Keys a file leaves
-// out keep these values; the optional ones left out are empty (and the shape's dimensions
-// must then be given: a box without a size is refused).
-struct RigidBodyDef {
-    std::string name;
-    ShapeKind shape = ShapeKind::Box;
-    std::optional<Vec3d> size;         // box: full side lengths, m
-    std::optional<double> radius;      // sphere, cylinder: m
-    std::optional<double> height;      // cylinder, along the body's z: m
-    std::string mesh;                  // mesh: an OBJ or OFF file
-    double scale = 1.0;                // mesh: file units to metres
-    std::optional<double> mass;        // kg; or
-    std::optional<double> density;     // kg/m^3 (default 1000, water)
-    std::optional<Vec3d> position;     // where the centre of mass goes, m (default: the file's, or the origin)
-    Quat orientation;                  // quaternion w, x, y, z (or `rotation`, degrees about x, y, z);
-                                       // normalised when the body is made
-    Vec3d velocity;                    // m/s, world axes
-    Vec3d angular_velocity;            // rad/s, world axes
-    bool fixed = false;                // infinite mass: scenery
-    std::optional<float> restitution;  // e at contacts (default: the world's `restitution`)
-    std::optional<float> friction;     // mu at contacts (default: the world's `dynamic_friction`)
-    float drag_coefficient = 0.0f;     // C_D of Eq. 23 (default 0: no drag)
-    float rolling_resistance = 0.0f;   // C_rr: a round body's turn on a contact is held back by
-                                       // C_rr |F_n| r (default 0: none)
-    std::optional<Vec3d> color;        // r, g, b from 0 to 1 (default: the palette's)
-
-    bool operator==(const RigidBodyDef&) const = default;
-};
-
-// The keys of a rigid body, for scene files, `--set NAME.KEY=VALUE` and the app's panel.
-enum class RigidKeyType { Number, PositiveNumber, Vec3, Quat, Bool, Shape, Text };
-struct RigidKeyInfo {
-    std::string_view key;
-    RigidKeyType type;
-    std::string_view unit;
-    std::string_view equation;
-    std::string_view summary;
-    double min = 0.0, max = 0.0;  // valid range of numbers (each component of a vector)
-};
-std::span<const RigidKeyInfo> rigid_key_table();
-const RigidKeyInfo* find_rigid_key(std::string_view key);
-// Sets one key of `def` from command-line text ("2", "1,0,0", "box", "true"). `rotation`
-// (degrees) sets the orientation. Throws InputError naming the body and key.
-void set_rigid_key(RigidBodyDef& def, std::string_view key, std::string_view text);
-std::string rigid_key_text(const RigidBodyDef& def, std::string_view key);
 
 // What a body is made of, once its shape is known: everything the simulation needs that never
 // changes. Built by make_rigid_body().

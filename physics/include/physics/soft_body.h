@@ -20,7 +20,7 @@
 #include "physics/mesh.h"
 #include "physics/mesh_reduce.h"
 #include "physics/pair_forces.h"
-#include "physics/params.h"
+#include "physics/defs.h"
 
 namespace softbody {
 
@@ -35,11 +35,11 @@ struct ParticleContact {
 };
 
 struct SoftBody {
-    std::string name = "body";  // the scene's flat keys make the body named "body"
-    Params params;              // this body's keys (ParamScope::Body in params.h); world keys unused
+    SoftBodyDef def;            // its name and keys as they are now
+    SoftBodyDef built;          // as its particles were made (reset makes them from `def` again)
     Mesh mesh;                  // as loaded: what is drawn; vertex numbers (pins, springs) are its
 
-    // Above the particle budget (params.max_particles) the body is simulated on a subset of the
+    // Above the particle budget (def.max_particles) the body is simulated on a subset of the
     // mesh's particles (mesh_reduce.h), and every particle of `mesh` follows three of them:
     // `reduced` says which, `skin` is its bindings with offsets in metres (scaled as the body
     // is), `particle_mesh` the simulated particles as a mesh (for overlays). Null and empty when
@@ -49,7 +49,7 @@ struct SoftBody {
     std::vector<SkinBinding> skin;
     Mesh particle_mesh;
     // What build_particles did with the file's units and axes.
-    float scale_used = 1.0f;          // file units to metres (params.scale, or the automatic one)
+    float scale_used = 1.0f;          // file units to metres (def.scale, or the automatic one)
     Vec3 file_centre;                 // subtracted before turning, when sized automatically
 
     // Topology (fixed): rest positions.
@@ -88,12 +88,14 @@ struct SoftBody {
     std::size_t particle_count() const { return x.size(); }
     std::size_t spring_count() const { return particle_count() * (particle_count() - 1) / 2; }
     bool is_pinned(std::uint32_t particle) const { return inv_mass[particle] == 0.0f; }
+    const std::string& name() const { return def.name; }
 };
 
-// Listing 8: one particle per distinct vertex of body.mesh (or, above max_particles, per
+// Listing 8: one particle per distinct vertex of body.mesh, as body.def says (or, above max_particles, per
 // particle the reduction keeps), turned so the file's `up_axis` points up (+z), then by
 // `rotation`, scaled by `scale` and lifted by `init_height`, at rest, all moving at
-// `initial_velocity`, pinned where `pinned` says. Resets the whole state.
+// `initial_velocity`, pinned where `pinned` says. Resets the whole state; body.built becomes
+// body.def.
 //
 // With `scale` automatic (0, "auto"), the mesh is centred (its bounding box's centre at the
 // origin) and scaled so that its largest side is 1 m; a mesh of one point keeps scale 1.
@@ -115,7 +117,7 @@ std::uint32_t vertex_of_particle(const SoftBody& body, std::uint32_t particle);
 // Pins or frees one particle; a pinned particle has 1/m = 0 and stays where it is.
 void set_pinned(SoftBody& body, std::uint32_t particle, bool pinned);
 
-// Applies the body's particle_mass, stiffness and damping keys (live: pins stay), scaled by r
+// Applies the body's particle_mass, stiffness and damping keys of body.def (live: pins stay), scaled by r
 // for a reduced body as `stiffness` above says.
 void apply_body_keys(SoftBody& body);
 

@@ -23,7 +23,9 @@
 #include "physics/contact.h"
 #include "physics/link.h"
 #include "physics/mesh.h"
-#include "physics/params.h"
+#include "physics/defs.h"
+#include "physics/ids.h"
+#include "physics/keys.h"
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 #include "physics/thread_pool.h"
@@ -103,15 +105,24 @@ struct SleepState {
 };
 
 // Everything a tick carries into the next, copied out (World::snapshot): restored, the world
-// goes on exactly as it did from that moment (the same bits), as long as its keys are the same.
-// The keys themselves, the grab and the bodies' meshes are not part of it.
+// goes on exactly as it did from that moment (the same bits). It holds what the world held
+// then: each body and spring with its id and its definition (as built, and its keys as they
+// were), so a body destroyed since is made again and one made since is unmade. The grab and
+// the live keys of each tick are the history's to replay (history.h), not the snapshot's.
 struct WorldSnapshot {
     struct Soft {
+        SoftBodyDef built, def;  // what its particles were made from, and its keys then
         Vec3Array x, v, verlet_step, x_tick_prev;
         FloatArray inv_mass;  // pins
         float verlet_h = 0.0f;
     };
     std::vector<Soft> soft;
+    IdTable<SoftBodyTag> soft_ids;
+    IdTable<RigidBodyTag> rigid_ids;
+    IdTable<SpringTag> spring_ids;
+    std::vector<RigidBodyDef> rigid_built, rigid_defs;
+    std::vector<SpringDef> springs;
+    std::vector<Link> links;  // the springs resolved, rest lengths as measured
     std::vector<double> rigid, rigid_tick_prev;  // Listing 10's flat state, now and a tick before
     std::vector<RigidContact> contacts;          // the last step's: the next one starts from them
     std::uint64_t ticks = 0;
@@ -129,60 +140,86 @@ struct WorldOptions {
     bool reference_kernel = false;  // use the readable one-pair-at-a-time loop
 };
 
-// What a world is built from: its settings, each soft body with its own keys and mesh, the
-// rigid bodies (made by make_rigid_body), and the springs between bodies, by name.
-struct SoftBodyDef {
-    std::string name = "body";
-    Params params;  // the body's keys (ParamScope::Body); world keys are taken from WorldDef
-    Mesh mesh;
-};
-struct WorldDef {
-    Params params;  // world keys (ParamScope::World); the body keys of the first soft body too
-    std::vector<SoftBodyDef> soft_bodies;
-    std::vector<RigidBody> rigid_bodies;
-    std::vector<SpringDef> springs;
-};
-
+// The world: a WorldDef's settings and things, made once, then added to and taken from while it
+// runs, each thing by its typed id (ids.h) or by its name; and the tick that advances them all.
 class World {
 public:
-    // Throws InputError for invalid params, pins that name no vertex, or a spring whose end
-    // names no body, a vertex that does not exist, or a point where a vertex is needed.
-    explicit World(WorldDef def, WorldOptions options = {});
-    // One soft body, named "body", with the keys of `params`.
-    World(const Params& params, Mesh mesh, WorldOptions options = {});
+    // Makes every body and spring of `def` in order. Throws InputError (naming the body or
+    // spring and the key) for an invalid key, a mesh that cannot be loaded, pins that name no
+    // vertex, twice the same name, or a spring whose end names no body, a vertex that does not
+    // exist, or a point where a vertex is needed.
+    explicit World(const WorldDef& def, WorldOptions options = {});
     ~World();
     World(const World&) = delete;
     World& operator=(const World&) = delete;
 
-    // One fixed tick of params().dt, in substeps. Does nothing once diverged.
+    // One fixed tick of settings().dt, in substeps. Does nothing once diverged.
     void tick();
     void run(std::uint64_t ticks);
 
-    // Back to the start: every body placed as it was built, with the current params.
+    // Back to the start: every body built again from its definition as it is now (keys that
+    // apply on reset take effect) and placed as it was; the bodies added since are kept.
     void reset();
+    // A key that applies on reset differs from what its body was built with.
+    bool reset_pending() const;
 
-    // Time travel: the state as it is now, and back to a state taken earlier from this world.
+    // --- What is in it: made and unmade while it runs -------------------------------------------
+    // Each throws InputError (the world unchanged) as the constructor says. A new body starts
+    // as its definition says, the others go on from where they are. Destroying a body destroys
+    // the springs attached to it, and wakes every rigid body.
+    SoftBodyId create_soft_body(SoftBodyDef def);
+    RigidBodyId create_rigid_body(const RigidBodyDef& def);
+    SpringId create_spring(const SpringDef& def);
+    void destroy(SoftBodyId id);
+    void destroy(RigidBodyId id);
+    void destroy(SpringId id);
+
+    // Ids by position (0 to count - 1: the order they are stepped in) and by name, and back.
+    // index() throws InputError for an id that names nothing (destroyed, or never made).
+    SoftBodyId soft_body_id(std::size_t index) const { return soft_ids_.at(index); }
+    RigidBodyId rigid_body_id(std::size_t index) const { return rigid_ids_.at(index); }
+    SpringId spring_id(std::size_t index) const { return spring_ids_.at(index); }
+    std::size_t index(SoftBodyId id) const;
+    std::size_t index(RigidBodyId id) const;
+    std::size_t index(SpringId id) const;
+    bool contains(SoftBodyId id) const { return soft_ids_.contains(id); }
+    bool contains(RigidBodyId id) const { return rigid_ids_.contains(id); }
+    bool contains(SpringId id) const { return spring_ids_.contains(id); }
+    std::optional<SoftBodyId> find_soft_body(std::string_view name) const;
+    std::optional<RigidBodyId> find_rigid_body(std::string_view name) const;
+    std::optional<SpringId> find_spring(std::string_view name) const;
+
+    // --- Keys --------------------------------------------------------------------------------
+    // Keys that apply at once do so from the next tick; the others (keys.h: on_reset) at the
+    // next reset(). Each setter validates and throws InputError, leaving everything unchanged.
+    const WorldSettings& settings() const { return settings_; }
+    void set_settings(const WorldSettings& settings);
+    const SoftBodyDef& def(SoftBodyId id) const { return soft_[index(id)].def; }
+    const RigidBodyDef& def(RigidBodyId id) const { return rigid_defs_[index(id)]; }
+    const SpringDef& def(SpringId id) const { return spring_defs_[index(id)]; }
+    void set_def(SoftBodyId id, const SoftBodyDef& def);
+    void set_def(RigidBodyId id, const RigidBodyDef& def);
+    void set_def(SpringId id, const SpringDef& def);
+    // One key by the name a scene and `--set` use: "dt" (the world's), "stiffness" (every soft
+    // body's), "bob.mass", "spring.stiffness" (the thing named so). Throws InputError naming it.
+    void set_key(std::string_view name, const KeyValue& value);
+    void set_key_text(std::string_view name, std::string_view text);
+    KeyValue key(std::string_view name) const;
+    // The world as it stands now: its settings and every thing's definition (what a saved
+    // preset holds).
+    WorldDef def() const;
+
+    // Time travel: the state as it is now, and back to a state taken earlier from this world,
+    // its bodies and springs too (those made since are unmade, those destroyed since made again).
     WorldSnapshot snapshot() const;
-    // With `more_bodies`, the snapshot may be of this world before bodies were added at the end
-    // of its lists (the app's Add menu): those it holds go on from it, the new ones start as built.
-    void restore(const WorldSnapshot& snapshot, bool more_bodies = false);
-
-    // The world's keys, and the first soft body's. Keys marked live in param_table() apply
-    // from the next tick; the rest (mesh, scale, init_height, initial_velocity, pinned) apply
-    // at the next reset(). Throws InputError.
-    void set_params(const Params& params);
-    // One soft body's keys (ParamScope::Body; its world keys are not read), as set_params says
-    // for the first: the one path a body's keys take, whichever body it is. Throws InputError.
-    void set_body_params(std::size_t body, const Params& params);
-    const Params& params() const { return params_; }
+    void restore(const WorldSnapshot& snapshot);
 
     void set_threads(int threads);
     int threads() const { return pool_->threads(); }
 
-    // Interaction (the app's mouse): pin or free a particle of the first soft body, or pull one
-    // toward a point.
-    void set_pinned(std::uint32_t particle, bool pinned);
-    bool is_pinned(std::uint32_t particle) const { return body().is_pinned(particle); }
+    // Interaction (the app's mouse): pin or free a particle of a soft body (kept in its
+    // definition's `pinned`, as a vertex, so it survives a reset), or pull one toward a point.
+    void set_pinned(std::size_t body, std::uint32_t particle, bool pinned);
     // A grabbed rigid body wakes (with its island), and does not sleep while held.
     void set_grab(std::optional<Grab> grab);
     const std::optional<Grab>& grab() const { return grab_; }
@@ -191,7 +228,7 @@ public:
     const std::string& divergence() const { return divergence_; }  // why it stopped, and what to change
 
     std::uint64_t ticks() const { return ticks_; }
-    double time() const { return static_cast<double>(ticks_) * static_cast<double>(params_.dt); }
+    double time() const { return static_cast<double>(ticks_) * static_cast<double>(settings_.dt); }
 
     // --- Rigid bodies: Listing 10's thirteen numbers each (rigid::P, X, L, Q) -------------------
     std::size_t rigid_body_count() const { return rigid_.size(); }
@@ -200,9 +237,6 @@ public:
     // The state at the start of the last tick: the renderer draws between it and the current one.
     const double* rigid_previous_state(std::size_t i) const { return &y_tick_prev_[i * rigid::kStateSize]; }
     RigidMotion rigid_motion(std::size_t i) const { return softbody::rigid_motion(rigid_[i], rigid_state(i)); }
-    // A rigid body's restitution and friction (empty: the world's), from the next contact on.
-    // It wakes (with its island).
-    void set_rigid_material(std::size_t i, std::optional<float> restitution, std::optional<float> friction);
     // Sleeping (the `sleeping` key, sleep.h): an island of rigid bodies all at rest for a while
     // sleeps, costs nothing but its broad-phase box, and wakes when touched by an awake body or
     // a particle, grabbed, or when a key changes.
@@ -222,6 +256,8 @@ public:
     const std::vector<SoftContact>& soft_contacts() const;
     // Eq. 38 term by term for one of them, with the bodies' inertia where they are now.
     ImpulseTerms impulse_terms(const RigidContact& contact) const;
+    // The springs between bodies, resolved (each with its definition at the same index).
+    std::size_t spring_count() const { return links_.size(); }
     const std::vector<Link>& links() const { return links_; }
     // Where each end of a link is now (world, m).
     Vec3d link_end_position(const LinkEnd& end) const;
@@ -236,22 +272,11 @@ public:
     // --- Soft bodies ----------------------------------------------------------------------------
     std::size_t soft_body_count() const { return soft_.size(); }
     const SoftBody& soft_body(std::size_t i) const { return soft_[i]; }
-    // The first soft body (the scene's flat keys): what the accessors below describe.
-    const SoftBody& body() const { return soft_.front(); }
-    const Mesh& mesh() const { return body().mesh; }
-    std::size_t particle_count() const { return body().particle_count(); }
-    std::size_t spring_count() const { return body().spring_count(); }
-    const Vec3Array& positions() const { return body().x; }
-    const Vec3Array& previous_tick_positions() const { return body().x_tick_prev; }  // for interpolation
-    const Vec3Array& velocities() const { return body().v; }
-    // Net force on each particle (N) at the last force evaluation, friction included: for display.
-    const Vec3Array& forces() const { return body().force; }
-    const Vec3Array& rest_positions() const { return body().rest; }
-    const FloatArray& inverse_masses() const { return body().inv_mass; }
 
     // --- Diagnostics (energy.cpp, stability.cpp) ----------------------------------------------
     Energy energy();
-    Vec3 center_of_mass() const;  // of the first soft body
+    Vec3 center_of_mass(std::size_t soft_body) const;  // of one soft body's particles
+    Vec3 center_of_mass() const;                       // of everything that moves, by mass
     float min_z() const;          // the lowest point of any body: particle, sphere or hull vertex
     Stability stability() const;  // the least stable soft body's
     // Substeps of the last tick: the springs' need (stability), the rigid bodies' turns, or at
@@ -264,7 +289,12 @@ public:
 
 private:
     void build();
-    void resolve_links(const std::vector<SpringDef>& springs);
+    // The bodies and springs changed (made, unmade, restored): every per-body array follows.
+    void structure_changed();
+    void check_new_name(const std::string& name) const;
+    SoftBody make_soft_body(const SoftBodyDef& def, const SoftBodyDef* built = nullptr);
+    Link resolve_link(const SpringDef& def, const std::string& what) const;
+    ThingNames thing_names() const;
     void update_substeps();
     void step(float h);
     int rotation_substeps(double time) const;
@@ -284,11 +314,16 @@ private:
     void take_energy_baseline();
     double kinetic_plus_gravity() const;
 
-    Params params_;
+    WorldSettings settings_;
     std::vector<SoftBody> soft_;
     std::vector<RigidBody> rigid_;
+    std::vector<RigidBodyDef> rigid_built_, rigid_defs_;  // each rigid body's definition: as built, and now
     std::vector<CollisionShape> shapes_;  // each rigid body's, beside it
     std::vector<Link> links_;
+    std::vector<SpringDef> spring_defs_;  // each link's
+    IdTable<SoftBodyTag> soft_ids_;
+    IdTable<RigidBodyTag> rigid_ids_;
+    IdTable<SpringTag> spring_ids_;
     std::vector<std::string> notes_;
 
     // The rigid bodies' flat state (Listing 10), the same at the start of the tick, the last
