@@ -123,6 +123,57 @@ float distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Ve
     return length(p - (a * w[0] + b * w[1] + c * w[2]));
 }
 
+// Whether the surface is closed, which way its winding faces, and its neighbours: each
+// triangle's across each of its edges, each particle's fan of triangles. Closed: every edge is
+// shared by exactly two triangles that run along it in opposite directions (wound alike).
+template <class Surface>
+void close_surface(Surface& s, const SoftBody& body) {
+    const std::size_t count = s.triangles.size() / 3;
+    s.closed = false;
+    s.across.assign(s.triangles.size(), 0);
+    s.fan_begin.assign(body.particle_count() + 1, 0);
+    s.fan.clear();
+    if (count == 0) return;
+    struct Edge {
+        std::uint32_t lo, hi, at;  // at: 3 tri + k, the edge from corner k to k + 1
+        bool forward;              // lo to hi
+    };
+    std::vector<Edge> edges;
+    edges.reserve(s.triangles.size());
+    for (std::uint32_t at = 0; at < s.triangles.size(); ++at) {
+        const std::uint32_t u = s.triangles[at], v = s.triangles[at - at % 3 + (at % 3 + 1) % 3];
+        edges.push_back({std::min(u, v), std::max(u, v), at, u < v});
+    }
+    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
+        return x.lo < y.lo || (x.lo == y.lo && (x.hi < y.hi || (x.hi == y.hi && x.at < y.at)));
+    });
+    bool closed = edges.size() % 2 == 0;
+    for (std::size_t k = 0; closed && k < edges.size(); k += 2) {
+        const Edge &e = edges[k], &f = edges[k + 1];
+        closed = e.lo == f.lo && e.hi == f.hi && e.forward != f.forward &&
+                 (k + 2 == edges.size() || edges[k + 2].lo != e.lo || edges[k + 2].hi != e.hi);
+        if (closed) {
+            s.across[e.at] = f.at / 3;
+            s.across[f.at] = e.at / 3;
+        }
+    }
+    if (!closed) return;
+    s.closed = true;
+    // The volume at rest, sum x0 . (x1 x x2) / 6: positive when the winding faces out.
+    double volume = 0.0;
+    for (std::size_t t = 0; t < count; ++t) {
+        const Vec3d x0(body.rest[s.triangles[3 * t]]), x1(body.rest[s.triangles[3 * t + 1]]), x2(body.rest[s.triangles[3 * t + 2]]);
+        volume += dot(x0, cross(x1, x2));
+    }
+    s.rest_volume = volume;
+    s.orient = volume < 0.0 ? -1.0f : 1.0f;
+    for (const std::uint32_t v : s.triangles) ++s.fan_begin[v + 1];
+    for (std::size_t i = 0; i < body.particle_count(); ++i) s.fan_begin[i + 1] += s.fan_begin[i];
+    s.fan.assign(s.triangles.size(), 0);
+    std::vector<std::uint32_t> filled(s.fan_begin.begin(), s.fan_begin.end() - 1);
+    for (std::uint32_t at = 0; at < s.triangles.size(); ++at) s.fan[filled[s.triangles[at]]++] = at / 3;
+}
+
 }  // namespace
 
 void SoftContacts::build(const std::vector<SoftBody>& bodies) {
@@ -147,6 +198,7 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
         }
         s.radius = s.triangles.empty() ? cloud_radius(body.rest) : 0.0f;
         slot_[b].assign(body.particle_count(), kNoSlot);
+        close_surface(s, body);
     }
 }
 
@@ -202,6 +254,11 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         }
         out.push_back(pair);
     });
+    // None within reach: inside a closed body, farther in than it can come out in the tick?
+    if (faces && s.closed && s.orient != 0.0f && a != b && out.size() == group) {
+        find_inside(bodies, a, b, p, d, out);
+        return;
+    }
     // A particle's contact with a surface is its nearest point, and the nearest on its other
     // side (begin_substep): of its triangles, only those that can come nearer in the tick than
     // the nearest one can go away, and those across it.
@@ -213,6 +270,107 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
         }
         out.resize(kept);
     }
+}
+
+Vec3 SoftContacts::outward(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w) const {
+    const auto normal = [&](std::uint32_t t) {
+        const std::uint32_t* v = &s.triangles[3 * t];
+        const Vec3 n = cross(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]);
+        const float l = length(n);
+        return l > 0.0f ? n / l : Vec3{};
+    };
+    const int zeros = (w[0] == 0.0f) + (w[1] == 0.0f) + (w[2] == 0.0f);
+    Vec3 n;
+    if (zeros == 0) {
+        n = normal(tri);
+    } else if (zeros == 1) {
+        // On the edge opposite the corner of weight 0: the edge from corner k + 1 to k + 2.
+        const std::uint32_t k = w[0] == 0.0f ? 0 : w[1] == 0.0f ? 1 : 2;
+        n = normal(tri) + normal(s.across[3 * tri + (k + 1) % 3]);
+    } else {
+        // At a corner: every triangle around it, by its angle there (a corner's normal that
+        // says inside from outside whatever the fan's triangles are like).
+        const std::uint32_t corner = s.triangles[3 * tri + (w[0] != 0.0f ? 0 : w[1] != 0.0f ? 1 : 2)];
+        for (std::uint32_t f = s.fan_begin[corner]; f < s.fan_begin[corner + 1]; ++f) {
+            const std::uint32_t t = s.fan[f];
+            const std::uint32_t* v = &s.triangles[3 * t];
+            const std::uint32_t k = v[0] == corner ? 0 : v[1] == corner ? 1 : 2;
+            const Vec3 e1 = x[v[(k + 1) % 3]] - x[corner], e2 = x[v[(k + 2) % 3]] - x[corner];
+            const float l1 = length(e1), l2 = length(e2);
+            if (!(l1 > 0.0f && l2 > 0.0f)) continue;
+            const float angle = std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0f, 1.0f));
+            n += normal(t) * angle;
+        }
+    }
+    return n * s.orient;
+}
+
+bool SoftContacts::inside(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w, const Vec3& p,
+                          const Vec3& away) const {
+    // At the nearest point of a closed surface, the way to a point outside is within the
+    // surface's outward cone there: over a face along its normal, beside an edge between its
+    // two faces' normals, at a corner among its faces'. So the sign of away . outward says
+    // which side it is on, where the cone is clear: not a crease folded nearly flat back on
+    // itself (two faces' normals nearly opposite, their sum short), nor a way almost across
+    // the outward direction. There, and only there, the winding number says: the solid angle
+    // the whole surface spans seen from p over 4 pi, 1 inside and 0 outside, whatever its
+    // folds.
+    const Vec3 out = outward(s, x, tri, w);
+    const int zeros = (w[0] == 0.0f) + (w[1] == 0.0f) + (w[2] == 0.0f);
+    const float size = length(out), dist = length(away);
+    const float clear = zeros == 0 ? 0.5f : zeros == 1 ? 1.0f : 1.5f;  // of a flat sheet's 1, 2 and 2 pi
+    const float along = dot(away, out);
+    if (size >= clear && std::abs(along) >= 0.2f * size * dist) return along < 0.0f;
+    double solid = 0.0;
+    for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
+        const Vec3 a = x[s.triangles[t]] - p, b = x[s.triangles[t + 1]] - p, c = x[s.triangles[t + 2]] - p;
+        const float la = length(a), lb = length(b), lc = length(c);
+        // Its solid angle, 2 atan2(a . (b x c), |a||b||c| + (a . b)|c| + (b . c)|a| + (c . a)|b|).
+        solid += 2.0 * std::atan2(double(dot(a, cross(b, c))),
+                                  double(la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb));
+    }
+    return solid * double(s.orient) > 2.0 * 3.14159265358979323846;
+}
+
+// A particle with no triangle of a closed body within reach may still be inside it (pushed in
+// deeper than a tick's reach, or placed there): its nearest point on the whole surface, found
+// by boxes twice as large each time until one holds a triangle, then every triangle nearer than
+// the nearest found; inside when the way from that point to it is against the surface's
+// outward direction there. Such a pair is kept whatever its distance (nearest(), below).
+void SoftContacts::find_inside(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, float d,
+                               std::vector<Pair>& out) const {
+    const SoftBody& A = bodies[a];
+    const SoftBody& B = bodies[b];
+    const Surface& s = surfaces_[b];
+    const Vec3 x = A.x[p];
+    const Box3f& all = s.tree.bounds();
+    if (x.x < all.lo.x || x.y < all.lo.y || x.z < all.lo.z || x.x > all.hi.x || x.y > all.hi.y || x.z > all.hi.z) return;
+    const Vec3 size = all.hi - all.lo;
+    const float most = length(size);
+    float best = INFINITY;
+    std::uint32_t best_tri = 0;
+    std::array<float, 3> best_w{};
+    const auto look = [&](float r) {
+        s.tree.query(box_of(x, r), [&](std::uint32_t t) {
+            const std::uint32_t* v = &s.triangles[3 * t];
+            const auto w = nearest_on_triangle(x, B.x[v[0]], B.x[v[1]], B.x[v[2]]);
+            const float dist = length(x - (B.x[v[0]] * w[0] + B.x[v[1]] * w[1] + B.x[v[2]] * w[2]));
+            if (dist < best || (dist == best && t < best_tri)) {
+                best = dist;
+                best_tri = t;
+                best_w = w;
+            }
+        });
+    };
+    for (float r = std::max(reach_[a][p] + d, 1e-3f); best == INFINITY && r < 2.0f * most; r *= 2.0f) look(r);
+    if (best == INFINITY) return;
+    look(best);  // the boxes that reached held the nearest only if it was within r; now every one within it
+    const std::uint32_t* v = &s.triangles[3 * best_tri];
+    const Vec3 away = x - (B.x[v[0]] * best_w[0] + B.x[v[1]] * best_w[1] + B.x[v[2]] * best_w[2]);
+    if (!inside(s, B.x, best_tri, best_w, x, away)) return;
+    Pair pair{std::uint32_t(a), p, std::uint32_t(b), best_tri, d, best, best + d, away};
+    pair.inside = true;
+    out.push_back(pair);
 }
 
 bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
@@ -232,6 +390,19 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         return false;
     }
     const float h = float(dt), g = length(world.gravity);
+    // Which way each closed surface faces this tick (Surface::orient): its volume now against
+    // its volume at rest.
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        Surface& s = surfaces_[b];
+        if (!s.closed) continue;
+        double volume = 0.0;
+        for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
+            const Vec3d x0(bodies[b].x[s.triangles[t]]), x1(bodies[b].x[s.triangles[t + 1]]), x2(bodies[b].x[s.triangles[t + 2]]);
+            volume += dot(x0, cross(x1, x2));
+        }
+        const double ratio = volume / s.rest_volume;
+        s.orient = std::abs(ratio) <= 0.25 ? 0.0f : float(ratio > 0.0 ? 1.0 : -1.0) * (s.rest_volume < 0.0 ? -1.0f : 1.0f);
+    }
     // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
     // speed, with gravity, twice what its last tick's forces added to the way it went, and a
     // millimetre. Each body's box with it.
@@ -450,7 +621,9 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             }
         }
     }
-    reusable_ = !rigid_meets && rigid_pairs_.empty();
+    // (Nor with a particle inside a body: its nearest triangle is found again every tick.)
+    reusable_ = !rigid_meets && rigid_pairs_.empty() &&
+                std::none_of(pairs_.begin(), pairs_.end(), [](const Pair& pair) { return pair.inside; });
     meeting_found_ = std::move(meeting);
     reach_found_ = reach_;
     x_found_.resize(bodies.size());
@@ -476,7 +649,7 @@ bool SoftContacts::nearest(const std::vector<SoftBody>& bodies, const Pair& pair
     out.away = p - (x0 * out.w[0] + x1 * out.w[1] + x2 * out.w[2]);
     out.dist = length(out.away);
     // Within reach of this tick only (the pair was found for the whole of it).
-    if (out.dist - pair.distance > pair.reach) return false;
+    if (out.dist - pair.distance > pair.reach && !pair.inside) return false;
     if (point) out.w[1] = out.w[2] = 0.0f;
     float inv = A.inv_mass[pair.p];
     for (int k = 0; k < 3; ++k) inv += out.w[std::size_t(k)] * out.w[std::size_t(k)] * B.inv_mass[out.other[k]];
@@ -500,7 +673,24 @@ void SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair&
         c.c.weight[k] = near.w[std::size_t(k)];
     }
     Vec3 n = near.away;
-    if (near.dist > 1e-7f) {
+    float signed_dist = near.dist;
+    const Surface& s = surfaces_[pair.b];
+    if (s.closed && s.orient != 0.0f && pair.a != pair.b) {
+        // A closed surface: the particle is outside or inside it, and the normal points out
+        // of it either way; inside, the gap is minus the distance, and the push (at most
+        // kPushSpeed) takes the particle out by the nearest way, not further in.
+        if (near.dist > 1e-7f) {
+            n = n / near.dist;
+            if (inside(s, B.x, pair.prim, near.w, A.x[pair.p], near.away)) {
+                n = -n;
+                signed_dist = -near.dist;
+            }
+        } else {
+            const Vec3 out = outward(s, B.x, pair.prim, near.w);
+            const float l = length(out);
+            n = l > 0.0f ? out / l : Vec3{0.0f, 0.0f, 1.0f};
+        }
+    } else if (near.dist > 1e-7f) {
         n = n / near.dist;
     } else {
         // On the surface itself: the face's normal (the way the face is wound).
@@ -508,7 +698,7 @@ void SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair&
         n = l > 0.0f ? near.way / l : Vec3{0.0f, 0.0f, 1.0f};
     }
     c.c.normal = Vec3d(n);
-    c.c.separation = near.dist - pair.distance;
+    c.c.separation = signed_dist - pair.distance;
     c.c.distance = pair.distance;
     // Eq. 38's denominator with body 2 the surface point: its velocity is sum w_i v_i, so an
     // impulse -J spread as -w_i J changes it by -sum w_i^2 J / m_i.
@@ -616,6 +806,7 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
             const std::size_t begin = groups_[g], end = groups_[g + 1];
             const Pair& first = pairs_[begin];
             const bool faces = !surfaces_[first.b].triangles.empty();
+            const bool closed = surfaces_[first.b].closed && surfaces_[first.b].orient != 0.0f && first.a != first.b;
             if (faces && !fresh_ && !moving_[g]) {
                 // D, against kKeepChoice d.
                 const std::vector<float>& moved_b = moved_[first.b];
@@ -642,6 +833,12 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
                 if (!same) {
                     same = std::uint32_t(k + 1);
                     near[0] = next;
+                } else if (closed) {
+                    // Signed: the nearest point alone says inside or out (make_contact).
+                    if (next.dist < near[0].dist) {
+                        same = std::uint32_t(k + 1);
+                        near[0] = next;
+                    }
                 } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
                     if (next.dist < near[0].dist) {
                         same = std::uint32_t(k + 1);

@@ -88,6 +88,11 @@ public:
     const std::vector<SoftContact>& contacts() const { return touching_; }
     // f(r) for each rigid body r with a point within reach of a soft body's triangles this tick
     // (found by find; once per point): such a body is kept awake (sleep.h).
+    // touching[b] = 1 for every soft body b with a pair or a rigid point within reach this tick.
+    void mark_touching(std::vector<std::uint8_t>& touching) const {
+        for (const Pair& pair : pairs_) touching[pair.a] = touching[pair.b] = 1;
+        for (const RigidPair& pair : rigid_pairs_) touching[pair.soft] = 1;
+    }
     template <class F>
     void for_each_rigid_in_reach(F f) const {
         for (const RigidPair& pair : rigid_pairs_) f(pair.rigid);
@@ -99,6 +104,18 @@ private:
         float radius = 0.0f;                   // of each particle: 0 with faces, else half the spacing
         Bvh tree;                              // over the triangles, or over the particles without faces
         std::vector<Box3f> boxes;
+        // A closed surface (every edge between exactly two triangles, wound the same way) has
+        // an inside: its contacts are signed (outward below). `orient` says which way its
+        // winding faces this tick: +1 out, -1 in (the file winds it inward, or the body has
+        // been crushed through itself and come out mirrored: its springs, every pair's, hold a
+        // mirror image as well as the shape), 0 while it is squashed nearly flat (a quarter of
+        // its volume at rest or less: no inside worth the name; its contacts are two-sided).
+        bool closed = false;
+        double rest_volume = 0.0;   // six times it, signed by the winding
+        float orient = 1.0f;
+        std::vector<std::uint32_t> across;     // per triangle and edge (k to k + 1): the triangle on its other side
+        std::vector<std::uint32_t> fan_begin;  // per particle: its triangles are fan[fan_begin[i]] up to fan_begin[i + 1]
+        std::vector<std::uint32_t> fan;
     };
     struct Pair {
         std::uint32_t a, p, b, prim;  // particle p of body a against triangle (or particle) prim of body b
@@ -106,6 +123,7 @@ private:
         float found_at = 0.0f;        // the nearest point's distance where the tick began, m
         float reach = 0.0f;           // how far the two sides can close in the tick, m
         Vec3 away;                    // from the nearest point to the particle, where the tick began
+        bool inside = false;          // found inside a closed surface, farther from it than its reach
     };
     struct Active {
         SoftContact c;
@@ -129,6 +147,19 @@ private:
         float inv_mass_sum = 0.0f;
     };
     bool nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const;
+    // A closed surface's outward direction at the point of triangle `tri` with weights w
+    // (not of unit length): the face's normal on the face, the two faces' beside an edge,
+    // and the faces' around a corner weighted by their angles there. Its sign against the
+    // way from that nearest point to a particle says whether the particle is inside.
+    Vec3 outward(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w) const;
+    // Whether point p, `away` from its nearest point (triangle tri, weights w) of closed surface
+    // s, is inside it: by outward() where that is clear, else by the winding number.
+    bool inside(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w, const Vec3& p,
+                const Vec3& away) const;
+    // A particle of body a inside closed body b, farther in than its pairs reach: its pair
+    // with b's nearest triangle (appended to out), or nothing when it is outside.
+    void find_inside(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, float d,
+                     std::vector<Pair>& out) const;
     void make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const;
 
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.

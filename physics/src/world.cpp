@@ -16,6 +16,7 @@
 #include "rigid_contacts.h"
 #include "sleep.h"
 #include "soft_contacts.h"
+#include "stability.h"
 #include "physics/error.h"
 
 namespace softbody {
@@ -24,6 +25,25 @@ namespace {
 
 // The slowest impact that bounces when there is no gravity to set the scale (m/s).
 constexpr double kRestingSpeed = 0.01;
+
+// The most h omega_max a substep may have while a soft body's particles are in contact
+// (World::update_substeps): a contact stops a particle as its substep begins and moves it on by
+// h times the velocity it changed, so the particle stands h dv off the path its springs
+// followed in the step, and they store 1/2 K (h dv)^2 of the 1/2 m dv^2 the contact took. For a
+// particle on a body's surface pushed along the normal K is about half of k N (half the
+// pairs' directions lie along it), so the springs get (h omega_max)^2 / 2 of it, omega_max^2 = k
+// N / m. At 1 that is at most half: a contact only ever takes energy. Near a step's stability
+// limit (2 under Verlet and symplectic Euler, 2.8 under RK4) it is 2 to 4 times what was
+// taken: two soft balls meeting at 20 m/s under RK4 at h omega 2.3 gained half their energy in
+// the tick they met and passed through each other.
+// And at least the substeps symplectic Euler needs for the body: the contacts' step is its step
+// (an impulse as the substep begins, the positions moved on by h times it), and where its
+// velocities follow their positions no looser. RK4 is stable at h gamma up to 2.8 against
+// symplectic Euler's 2; there a stiff body's fast overdamped mode (the dampers, c N / m) hardly
+// decays from one step to the next, its velocity stops saying where its particles go, and a
+// contact that sees a particle leaving at 2 m/s watches it sink on: in a pile of seven under
+// RK4 at h gamma 2.9 a cube's particle went 14 cm into a ball.
+constexpr double kContactStepOmega = 1.0;
 
 void copy(const Vec3Array& from, Vec3Array& to) {
     to.x = from.x;
@@ -34,6 +54,41 @@ void copy(const Vec3Array& from, Vec3Array& to) {
 }  // namespace
 
 const std::vector<SoftContact>& World::soft_contacts() const { return soft_contacts_->contacts(); }
+
+// What each soft body's contacts need (contact_substeps_): h omega_max <= kContactStepOmega with
+// its springs up to 25% stiffer (as the stability estimate allows for), and symplectic Euler's
+// stable step, whatever the integrator: the contacts act the same in every one
+// (contact_solver.h).
+void World::update_contact_substeps() {
+    contact_substeps_.assign(soft_.size(), 1);
+    WorldSettings symplectic = settings_;
+    symplectic.integrator = Integrator::SymplecticEuler;
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        const SoftBody& body = soft_[b];
+        const double n = double(body.particle_count());
+        if (n < 2.0 || !(body.mass > 0.0f)) continue;
+        const double omega = std::sqrt(1.25 * double(body.stiffness) * n / double(body.mass));
+        const int stable = soft_body_stability(body, symplectic, 1).substeps_needed;
+        contact_substeps_[b] = int(std::min(1000.0, std::ceil(double(settings_.dt) * omega / kContactStepOmega - 1e-9)));
+        contact_substeps_[b] = stable > 0 ? std::max(contact_substeps_[b], stable) : 1000;
+    }
+}
+
+// The substeps the soft bodies in contact need over `part` of the tick: the most any of them
+// needs (contact_substeps_), 1 when none is in contact. In contact: a particle within reach of
+// a rigid body (contacts_), or a soft pair or a rigid point within reach of its surface.
+int World::soft_contact_substeps(double part) {
+    soft_in_contact_.assign(soft_.size(), 0);
+    if (soft_touching_) soft_contacts_->mark_touching(soft_in_contact_);
+    for (const RigidContact& c : contacts_) {
+        if (c.soft >= 0) soft_in_contact_[std::size_t(c.soft)] = 1;
+    }
+    int most = 1;
+    for (std::size_t b = 0; b < soft_.size(); ++b) {
+        if (soft_in_contact_[b]) most = std::max(most, contact_substeps_[b]);
+    }
+    return std::max(1, int(std::ceil(double(most) * part - 1e-9)));
+}
 
 // ---------------------------------------------------------------------------------------------
 // Forces at one stage of the step: stage 0 is the current state, stages 1 to 3 are RK4's.
@@ -368,12 +423,14 @@ void World::tick() {
         int steps = std::max(1, int(std::ceil(double(substeps_) * part - 1e-9)));
         if (settings_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
         if (soft_touching_) steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * part - 1e-9)));
+        if (soft_touching_ && rigid_.empty()) steps = std::max(steps, soft_contact_substeps(part));
         double span = left;
         if (!rigid_.empty()) {
             // Contacts within reach of the rest of the tick; while a body turns fast, solved
             // over one substep only (and found again, from where it leaves the bodies, for the
             // next).
             find_contacts(left);
+            if (!soft_.empty()) steps = std::max(steps, soft_contact_substeps(part));
             const int turns = contacts_.empty() ? 1 : contact_intervals(left);
             if (turns > 1) {
                 span = left / double(std::max(turns, steps));

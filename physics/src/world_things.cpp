@@ -572,6 +572,7 @@ void World::update_substeps() {
         substeps_ = std::max(settings_.substeps, needed > 0 ? needed : 1000);
     }
     tick_substeps_ = substeps_;
+    update_contact_substeps();
 }
 
 }  // namespace softbody

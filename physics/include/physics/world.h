@@ -306,6 +306,8 @@ private:
     void update_sleep();
     int begin_contacts(double interval, int steps);
     int contact_intervals(double time) const;
+    int soft_contact_substeps(double part);
+    void update_contact_substeps();
     ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
     void evaluate_links(int stage);
@@ -345,6 +347,8 @@ private:
 
     std::uint64_t ticks_ = 0;
     int substeps_ = 1;       // what the springs need (update_substeps)
+    std::vector<int> contact_substeps_;  // per soft body: what its contacts need (update_substeps)
+    std::vector<std::uint8_t> soft_in_contact_;  // per soft body: within reach of a contact this tick
     int tick_substeps_ = 1;  // what the last tick ran
     Status status_ = Status::Ok;
     std::string divergence_;
