@@ -8,5 +8,6 @@ int simulate_command(int argc, char** argv);  // softbody simulate ...: no windo
 int render_command(int argc, char** argv);    // softbody render ...: PNGs, headless (OSMesa)
 int bench_command(int argc, char** argv);     // softbody bench ...: physics timings, no GL
 int lessons_command(int argc, char** argv);   // softbody lessons [--json]: the lessons in order
+int keys_command(int argc, char** argv);      // softbody keys [--markdown|--json]: every key
 
 }  // namespace softbody::app

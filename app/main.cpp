@@ -6,6 +6,7 @@
 //   softbody render [options]      images and videos, headless
 //   softbody bench [options]       timings of the physics
 //   softbody lessons [--json]      the lessons, in the addendum's order
+//   softbody keys [--markdown]     every key: type, unit, range, default, equation, meaning
 //
 // Each subcommand lives in its own cmd_*.cpp; this file only dispatches and turns errors into
 // one line on stderr and an exit code.
@@ -28,7 +29,8 @@ constexpr const char* kUsage =
     "  render     PNG images, an animation's frames or an MP4 video, drawn headless\n"
     "  bench      timings of the physics on the scenes the app opens\n"
     "  lessons    the lessons, in the addendum's order\n"
-    "Every command takes --scene FILE, --mesh FILE and --set KEY=VALUE (lessons and bench excepted).";
+    "  keys       every key of the world, soft bodies, rigid bodies and springs\n"
+    "Every command takes --scene FILE, --mesh FILE and --set KEY=VALUE (lessons, keys and bench excepted).";
 
 int dispatch(int argc, char** argv) {
     using namespace softbody::app;
@@ -39,6 +41,7 @@ int dispatch(int argc, char** argv) {
     if (command == "render") return render_command(argc, argv);
     if (command == "bench") return bench_command(argc, argv);
     if (command == "lessons") return lessons_command(argc, argv);
+    if (command == "keys") return keys_command(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
         std::cout << kUsage << "\n";
         return kOk;
@@ -57,7 +60,7 @@ int main(int argc, char** argv) {
         std::string message = e.what();
         message = message.substr(0, message.find('\n'));
         const std::string_view first = argc > 1 ? argv[1] : "";
-        const bool known = first == "simulate" || first == "render" || first == "bench" || first == "run" || first == "lessons";
+        const bool known = first == "simulate" || first == "render" || first == "bench" || first == "run" || first == "lessons" || first == "keys";
         const std::string command = known ? " " + std::string(first) : "";
         std::cerr << "softbody: " << message << " (see 'softbody" << command << " --help')\n";
         return kBadInput;

@@ -258,11 +258,12 @@ const KeyInfo kKeys[] = {
                                          .max = 1e6, .unset_word = "auto", .slider_min = 0, .slider_max = 5}),
 };
 
+// The shortest text that reads back as the same number: the same float for a float's key
+// ("0.02", not "0.0199999996"), the same double for a double's.
 std::string number_text(double x, bool single) {
-    std::ostringstream out;
-    out.precision(single ? 9 : 17);
-    out << x;
-    return out.str();
+    char text[64];
+    const auto result = single ? std::to_chars(text, text + sizeof text, float(x)) : std::to_chars(text, text + sizeof text, x);
+    return std::string(text, result.ptr);
 }
 
 // The range's numbers as people read them: 9 digits.
