@@ -1,5 +1,5 @@
 // The JSON that describes a world's bodies, shared by `softbody simulate`'s summary and the
-// app's: one entry per body, with the fields README.md lists.
+// app's: one entry per body, with the fields app/README.md#softbody-simulate lists.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -405,7 +405,7 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         // within mu_s m g cos theta: held while tan theta <= mu_s. Eq. 25: sliding, friction is
         // mu_d m g cos theta, so a = g (sin theta - mu_d cos theta).
         const SlopeFrame f = slope_frame(world, slope_);
-        // A particle on a rigid body: the body's friction for both, if it sets one (SCENES.md).
+        // A particle on a rigid body: the body's friction for both, if it sets one (physics/README.md#materials).
         const std::optional<float> own = slope_ ? world.rigid_body(*slope_).friction : std::nullopt;
         const double mu_s = own ? double(*own) : double(world.settings().static_friction);
         const double mu_d = own ? double(*own) : double(world.settings().dynamic_friction);
@@ -435,7 +435,7 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
         if (a.measured) a.agrees = std::abs(*a.measured - a.predicted) <= a.tolerance * std::max(std::abs(a.predicted), 0.1 * f.g * std::sin(f.theta));
         out.push_back(a);
     } else if (kind == "stability") {
-        // PHYSICS.md, stability: all pairs joined, equal masses; the fastest mode is the whole
+        // physics/README.md#stability: all pairs joined, equal masses; the fastest mode is the whole
         // body's swelling, omega^2 = N k / m, and Verlet is stable while N (k h^2 + 2 c h) < 4 m.
         const SoftBody& b = world.soft_body(body_);
         const double N = double(b.particle_count()), h = double(world.settings().dt) / world.substeps_in_use();

@@ -1,5 +1,5 @@
 // Automatic substeps: Listing 8's constants with every pair connected are stable only while
-// N (k h^2 + 2 c h) < 4 m (PHYSICS.md): one step of 0.02 s holds up to about 500 particles,
+// N (k h^2 + 2 c h) < 4 m (physics/README.md#stability): one step of 0.02 s holds up to about 500 particles,
 // so a 2,000-particle body needs h of a third of that or less (more with the safety margin
 // World::stability() keeps).
 #include <gtest/gtest.h>

@@ -10,7 +10,7 @@
 namespace softbody::test {
 namespace {
 
-// A world from scene text (the keys of README.md's "Scene files").
+// A world from scene text (the keys of app/README.md#scene-files).
 World world_of(const std::string& json, int threads = 1) {
     return World((parse_scene(json, "test.json")), WorldOptions{threads});
 }

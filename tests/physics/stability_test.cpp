@@ -1,4 +1,4 @@
-// The stability estimate (see PHYSICS.md, "Stability") and divergence detection.
+// The stability estimate (see physics/README.md#stability) and divergence detection.
 //
 // Linearised about the rest shape, the all-pairs springs have stiffness k G with
 //     G = sum over pairs (e_i - e_j)(e_i - e_j)^T (x) d_hat d_hat^T     (3N x 3N),
