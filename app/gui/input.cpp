@@ -3,11 +3,12 @@
 #include <cmath>
 
 #include "gui/bindings.h"
-#include "gui/demo.h"
+#include "gui/session.h"
+#include "gui/view.h"
 
 namespace softbody::app {
 
-UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float height, float ui_scale) {
+UiRequests Controls::handle(Session& session, View& view, const InputEvent& e, float width, float height, float ui_scale) {
     UiRequests ui;
     // Buttons act where the pointer last moved to (a script's "press" carries no position).
     if (e.type == InputEvent::Type::Move) {
@@ -22,17 +23,17 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             last_x_ = px;
             last_y_ = py;
             if (e.button == 0) {
-                const auto picked = demo.pick(px, py, width, height, 18.0f * ui_scale);
+                const auto picked = view.pick(session.world(), px, py, width, height, 18.0f * ui_scale);
                 if (e.ctrl) {
                     // ctrl-click: inspect what is there (nothing: stop inspecting)
-                    if (picked) demo.inspect(*picked);
-                    else demo.stop_inspecting();
+                    if (picked) session.inspect({picked->rigid, picked->body, picked->particle});
+                    else session.stop_inspecting();
                     drag_button_ = -1;
                 } else if (picked && e.shift && !picked->rigid) {
-                    demo.toggle_pin(picked->body, picked->particle);  // shift-click: pin or free
+                    session.toggle_pin(picked->body, picked->particle);  // shift-click: pin or free
                     drag_button_ = -1;
                 } else if (picked) {
-                    demo.begin_grab(*picked, px, py, width, height);
+                    view.begin_grab(session, *picked, px, py, width, height);
                     drag_ = Drag::Grab;
                 } else {
                     drag_ = Drag::Orbit;  // left-drag on empty space turns the view
@@ -49,44 +50,44 @@ UiRequests Controls::handle(Demo& demo, const InputEvent& e, float width, float 
             last_x_ = px;
             last_y_ = py;
             if (drag_ == Drag::Grab) {
-                demo.drag(px, py, width, height);
+                view.drag(session, px, py, width, height);
             } else if (drag_ == Drag::Orbit) {
-                demo.camera.orbit(-dx * 0.006f, dy * 0.006f);
+                view.camera.orbit(-dx * 0.006f, dy * 0.006f);
             } else if (drag_ == Drag::Pan) {
                 // One pixel moves the target by the width a pixel covers at the target.
-                const float metres_per_pixel = 2.0f * demo.camera.distance * std::tan(0.5f * demo.camera.fov_y) / height;
-                demo.pan(-dx * metres_per_pixel, dy * metres_per_pixel);
+                const float metres_per_pixel = 2.0f * view.camera.distance * std::tan(0.5f * view.camera.fov_y) / height;
+                view.pan(session, -dx * metres_per_pixel, dy * metres_per_pixel);
             }
             break;
         }
         case InputEvent::Type::Release:
             if (e.button != drag_button_) break;
-            if (drag_ == Drag::Grab) demo.end_grab();
+            if (drag_ == Drag::Grab) view.end_grab(session);
             drag_ = Drag::None;
             drag_button_ = -1;
             break;
         case InputEvent::Type::Scroll:
-            demo.camera.zoom(std::pow(0.88f, e.scroll));
+            view.camera.zoom(std::pow(0.88f, e.scroll));
             break;
         case InputEvent::Type::Key: {
             // The keys and what they do are listed in gui/bindings.cpp, which the help prints.
             const KeyBinding* binding = binding_of_key(e.key);
             if (!binding) break;
             switch (binding->command) {
-                case KeyCommand::Pause: demo.paused = !demo.paused; break;
+                case KeyCommand::Pause: session.paused = !session.paused; break;
                 case KeyCommand::Tick:
-                    demo.paused = true;
-                    demo.single_tick();
+                    session.paused = true;
+                    session.single_tick();
                     break;
-                case KeyCommand::TickBack: demo.step_back(); break;
-                case KeyCommand::Reset: demo.reset(); break;
-                case KeyCommand::Frame: demo.frame_body(); break;
-                case KeyCommand::Follow: demo.follow = !demo.follow; break;
-                case KeyCommand::Particles: demo.overlays.particles = !demo.overlays.particles; break;
-                case KeyCommand::Springs: demo.overlays.springs = !demo.overlays.springs; break;
-                case KeyCommand::CentreOfMass: demo.overlays.center_of_mass = !demo.overlays.center_of_mass; break;
-                case KeyCommand::Velocities: demo.overlays.velocities = !demo.overlays.velocities; break;
-                case KeyCommand::Angular: demo.overlays.angular = !demo.overlays.angular; break;
+                case KeyCommand::TickBack: session.step_back(); break;
+                case KeyCommand::Reset: session.reset(); break;
+                case KeyCommand::Frame: view.frame_body(session); break;
+                case KeyCommand::Follow: view.follow = !view.follow; break;
+                case KeyCommand::Particles: view.overlays.particles = !view.overlays.particles; break;
+                case KeyCommand::Springs: view.overlays.springs = !view.overlays.springs; break;
+                case KeyCommand::CentreOfMass: view.overlays.center_of_mass = !view.overlays.center_of_mass; break;
+                case KeyCommand::Velocities: view.overlays.velocities = !view.overlays.velocities; break;
+                case KeyCommand::Angular: view.overlays.angular = !view.overlays.angular; break;
                 case KeyCommand::Record: ui.toggle_recording = true; break;
                 case KeyCommand::Panels: ui.toggle_panels = true; break;
                 case KeyCommand::Help: ui.toggle_help = true; break;

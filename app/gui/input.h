@@ -6,7 +6,8 @@
 
 namespace softbody::app {
 
-class Demo;
+class Session;
+class View;
 
 struct InputEvent {
     enum class Type { Move, Press, Release, Scroll, Key } type = Type::Move;
@@ -28,7 +29,7 @@ struct UiRequests {
 class Controls {
 public:
     // width, height: the view in pixels (pick radius and pan speed are in pixels).
-    UiRequests handle(Demo& demo, const InputEvent& event, float width, float height, float ui_scale);
+    UiRequests handle(Session& session, View& view, const InputEvent& event, float width, float height, float ui_scale);
 
 private:
     enum class Drag { None, Orbit, Pan, Grab } drag_ = Drag::None;

@@ -1,58 +1,38 @@
-// The Dear ImGui panels of the demo: Simulation, Parameters, Mesh, Display, Energy, Stability,
-// Rigid bodies, Last collision, Compare integrators, Presets, and the help overlay. They read and edit the Demo; they own only UI state.
+// The demo's panel: the tools (tool.h, one file each under gui/tools/) in their order, each under
+// its own header, the help overlay and the error banner. It owns the tools and nothing else.
 #pragma once
 
-#include <string>
+#include <memory>
 #include <vector>
 
-#include "gui/lesson_panel.h"
+#include "gui/tool.h"
 
 namespace softbody::app {
 
-class Demo;
-class Recorder;
+class LessonTool;
 
 class Panels {
 public:
     explicit Panels(float ui_scale);
 
+    // Hands the session to the tools that watch its ticks (once, before the first frame).
+    void attach(Session& session);
     // Draws everything for this frame (between the window's begin/end_ui_frame).
-    void draw(Demo& demo, float fps);
+    void draw(Session& session, View& view, float fps);
 
     float width() const { return show_panels ? 376.0f * scale_ : 0.0f; }  // pixels the panel covers
+    LessonTool* lesson() const;  // the Lesson tool (its menu, its meter, the run's summary)
 
     bool show_help = false;
     bool show_panels = true;
-    LessonPanel lesson;  // the Lessons menu and the Lesson panel (lesson_panel.h)
     Recorder* recorder = nullptr;  // the Record button's (gui/recorder.h); none: no button
 
 private:
-    void simulation(Demo& demo, float fps);
-    void timeline(Demo& demo);
-    void parameters(Demo& demo);
-    void add(Demo& demo);  // the Add menu: bodies dropped into the scene
-    void mesh(Demo& demo);
-    void rigid_bodies(Demo& demo);
-    void last_collision(Demo& demo);
-    void inspector(Demo& demo);
-    void display(Demo& demo);
-    void energy(Demo& demo);
-    void energy_by_integrator(Demo& demo);
-    void compare(Demo& demo);
-    void stability(Demo& demo);
-    void presets(Demo& demo);
     void help();
-    void error_banner(Demo& demo);
+    void error_banner(Session& session, View& view);
 
     float scale_;
-    std::vector<std::string> scenes_, meshes_;  // bundled assets
-    char open_path_[1024] = {};
-    char preset_path_[1024] = {};
-    std::string confirm_overwrite_;             // path awaiting "overwrite?" (empty: none)
-    int rigid_selected_ = 0;                    // the rigid body the panel shows
-    int add_mesh_ = 0;                          // the mesh file the Add menu drops
-    bool compare_pick_[4] = {false, true, true, false};  // integrators to compare (params.h order)
-    int compare_substeps_[4] = {0, 0, 0, 0};             // each one's substeps; 0: automatic
+    std::vector<std::unique_ptr<Tool>> tools_;
 };
 
 }  // namespace softbody::app

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "gui/demo.h"
+#include "gui/session.h"
 #include "gui/input.h"
 
 namespace softbody::app {

@@ -1,4 +1,4 @@
-#include "gui/lesson_panel.h"
+#include "gui/tools/lesson.h"
 
 #include <imgui.h>
 
@@ -6,16 +6,14 @@
 #include <cstdio>
 
 #include "cli.h"
-#include "gui/demo.h"
+#include "gui/session.h"
 #include "physics/scene_io.h"
 
 namespace softbody::app {
 
 namespace {
 
-std::string lesson_path(std::size_t number) {
-    return assets_dir() + "/scenes/" + std::string(lessons()[number - 1].file);
-}
+std::string lesson_path(std::size_t number) { return assets_dir() + "/scenes/" + std::string(lessons()[number - 1].file); }
 
 // A value with its unit, or the outcome in words when the closed form predicts one.
 std::string value_text(double value, const std::string& unit) {
@@ -27,15 +25,15 @@ std::string value_text(double value, const std::string& unit) {
 
 }  // namespace
 
-bool open_lesson(Demo& demo, std::size_t number) {
+bool open_lesson(Session& session, std::size_t number) {
     if (number < 1 || number > lessons().size()) {
-        demo.set_error("there is no lesson " + std::to_string(number) + " (1 to " + std::to_string(lessons().size()) + ")");
+        session.set_error("there is no lesson " + std::to_string(number) + " (1 to " + std::to_string(lessons().size()) + ")");
         return false;
     }
-    return demo.load_scene_file(lesson_path(number));
+    return session.load_scene_file(lesson_path(number));
 }
 
-LessonPanel::LessonPanel() {
+LessonTool::LessonTool() {
     for (std::size_t n = 1; n <= lessons().size(); ++n) {
         std::string title(lessons()[n - 1].file);
         try {
@@ -47,19 +45,21 @@ LessonPanel::LessonPanel() {
     }
 }
 
-void LessonPanel::attach(Demo& demo) {
-    demo.on_tick = [this, &demo](const World& world) {
-        follow(demo);
+void LessonTool::attach(Session& session) {
+    session.on_tick.push_back([this, &session](const World& world) {
+        follow(session);
         if (meter_) meter_->observe(world);
-    };
+    });
 }
 
-void LessonPanel::follow(const Demo& demo) {
-    const World& world = demo.world();
-    if (world_ == &world && source_ == demo.source()) return;
+bool LessonTool::open(const Session& session) const { return !session.lesson().title.empty(); }
+
+void LessonTool::follow(const Session& session) {
+    const World& world = session.world();
+    if (world_ == &world && source_ == session.source()) return;
     world_ = &world;
-    source_ = demo.source();
-    const Scene scene = demo.scene();
+    source_ = session.source();
+    const Scene& scene = session.lesson();
     title_ = scene.title;
     text_ = scene.text;
     number_ = lesson_number(source_);
@@ -73,16 +73,17 @@ void LessonPanel::follow(const Demo& demo) {
     }
 }
 
-void LessonPanel::draw(Demo& demo, float scale) {
-    follow(demo);
+void LessonTool::draw(ToolContext& context) {
+    Session& session = context.session;
+    const float scale = context.scale;
+    follow(session);
     const bool lesson = !title_.empty();
-    if (!ImGui::CollapsingHeader("Lesson", lesson ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
     // The Lessons menu, in the addendum's order.
     const std::string current = number_ > 0 ? titles_[number_ - 1] : "Lessons...";
     ImGui::SetNextItemWidth(-1);
     if (ImGui::BeginCombo("##lessons", current.c_str())) {
         for (std::size_t n = 1; n <= titles_.size(); ++n) {
-            if (ImGui::Selectable(titles_[n - 1].c_str(), n == number_)) open_lesson(demo, n);
+            if (ImGui::Selectable(titles_[n - 1].c_str(), n == number_)) open_lesson(session, n);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(lessons()[n - 1].equation).c_str());
         }
         ImGui::EndCombo();
@@ -105,17 +106,21 @@ void LessonPanel::draw(Demo& demo, float scale) {
     // Expected against actual, live.
     ImGui::Separator();
     ImGui::TextDisabled("expected against actual");
-    for (const Comparison& c : meter_->comparisons(demo.world())) {
+    for (const Comparison& c : meter_->comparisons(session.world())) {
         ImGui::Text("%s", c.name.c_str());
         ImGui::SameLine();
         ImGui::TextDisabled("(%s)", c.equation.c_str());
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.formula.c_str());
         ImGui::Indent(8.0f * scale);
         ImGui::PushTextWrapPos(0.0f);
-        if (!c.predicted_text.empty()) ImGui::Text("predicted: %s", c.predicted_text.c_str());
-        else ImGui::Text("predicted: %s   %s", value_text(c.predicted, c.unit).c_str(), c.formula.c_str());
-        if (c.measured) ImGui::Text("measured:  %s   %s", value_text(*c.measured, c.unit).c_str(), c.measured_text.c_str());
-        else ImGui::Text("measured:  %s", c.measured_text.empty() ? "not yet" : c.measured_text.c_str());
+        if (!c.predicted_text.empty())
+            ImGui::Text("predicted: %s", c.predicted_text.c_str());
+        else
+            ImGui::Text("predicted: %s   %s", value_text(c.predicted, c.unit).c_str(), c.formula.c_str());
+        if (c.measured)
+            ImGui::Text("measured:  %s   %s", value_text(*c.measured, c.unit).c_str(), c.measured_text.c_str());
+        else
+            ImGui::Text("measured:  %s", c.measured_text.empty() ? "not yet" : c.measured_text.c_str());
         ImGui::PopTextWrapPos();
         if (c.agrees) {
             const bool ok = *c.agrees;
@@ -131,13 +136,13 @@ void LessonPanel::draw(Demo& demo, float scale) {
     }
 }
 
-nlohmann::ordered_json LessonPanel::summary(const Demo& demo) {
-    follow(demo);
+nlohmann::ordered_json LessonTool::summary(const Session& session) {
+    follow(session);
     if (title_.empty()) return nullptr;
     nlohmann::ordered_json out = {{"number", number_}, {"title", title_}, {"error", error_}};
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     if (meter_) {
-        for (const Comparison& c : meter_->comparisons(demo.world())) {
+        for (const Comparison& c : meter_->comparisons(session.world())) {
             const auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
             list.push_back({{"name", c.name},
                             {"equation", c.equation},
@@ -153,5 +158,9 @@ nlohmann::ordered_json LessonPanel::summary(const Demo& demo) {
     out["comparisons"] = list;
     return out;
 }
+
+namespace {
+const ToolRegistration kRegistered{10, [] { return std::unique_ptr<Tool>(new LessonTool); }};
+}  // namespace
 
 }  // namespace softbody::app

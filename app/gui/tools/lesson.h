@@ -1,7 +1,7 @@
 // The Lessons menu and the Lesson panel: open a lesson (physics/lesson.h, in the addendum's
 // order), read its title and text, and watch "expected against actual": each closed form's
 // predicted value beside the one measured from the running world, tick by tick.
-// The panel owns the lesson's meter; the Demo hands it every tick through Demo::on_tick.
+// The tool owns the lesson's meter; the session hands it every tick (Session::on_tick).
 #pragma once
 
 #include <cstddef>
@@ -10,28 +10,30 @@
 #include <string>
 #include <vector>
 
+#include "gui/tool.h"
 #include "physics/lesson.h"
 
 namespace softbody::app {
 
-class Demo;
+class Session;
 
-// Loads lesson `number` (from 1) into the demo; false and the demo's error when there is none.
-bool open_lesson(Demo& demo, std::size_t number);
+// Loads lesson `number` (from 1) into the session; false and the session's error when there is none.
+bool open_lesson(Session& session, std::size_t number);
 
-class LessonPanel {
+class LessonTool : public Tool {
 public:
-    LessonPanel();
-
-    // Feeds every tick of the demo's world to the lesson's meter (sets demo.on_tick).
-    void attach(Demo& demo);
+    LessonTool();
+    const char* title() const override { return "Lesson"; }
+    bool open(const Session& session) const override;
+    // Feeds every tick of the session's world to the lesson's meter.
+    void attach(Session& session) override;
     // The Lessons menu and, when the scene is a lesson, its title, text and comparisons.
-    void draw(Demo& demo, float scale);
+    void draw(ToolContext& context) override;
     // The lesson on show for a run's summary (number, title, comparisons); null when none.
-    nlohmann::ordered_json summary(const Demo& demo);
+    nlohmann::ordered_json summary(const Session& session);
 
 private:
-    void follow(const Demo& demo);  // a new world or scene: its title, text and a new meter
+    void follow(const Session& session);  // a new world or scene: its title, text and a new meter
 
     std::vector<std::string> titles_;  // each lesson's, for the menu
     const void* world_ = nullptr;      // the world the meter watches (identity only)
