@@ -756,7 +756,7 @@ constexpr PeerConfig kPeerConfigs[] = {
 
 // The section: every scene at each thread count, then the peer's three runs of it, each row as
 // it comes; then two tables, ms per tick side by side and the soundness figures, in Markdown (the
-// README's table is this output). Returns the rows as JSON.
+// tables in tests/benchmarks/README.md are this output). Returns the rows as JSON.
 nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, double seconds_override,
                                      const std::vector<int>& thread_counts, bool use_peer, bool json) {
     const std::string peer = use_peer ? find_peer() : std::string();
@@ -771,7 +771,7 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
                      "has put to sleep (softbody: the sleeping key, on by default), KE = kinetic energy left,\n"
                      "top = how far a pyramid's top box went from its start.\n";
         if (!peer.empty()) {
-            std::cout << "Bullet runs: " << peer << " (the same scenes built in Bullet; see README, \"Speed\").\n";
+            std::cout << "Bullet runs: " << peer << " (the same scenes built in Bullet; see tests/benchmarks/README.md).\n";
         } else if (use_peer) {
             std::cout << "Bullet comparison skipped: softbody_peer_bullet was not built beside this executable (to get it: "
                          "sudo apt install libbullet-dev, then rebuild)\n";
@@ -871,7 +871,7 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
 int bench_command(int argc, char** argv) {
     CLI::App app("Times the physics alone on the scenes the app opens: the CPU's peak, whole ticks of cloud:N at 1 and\n"
                  "all threads against the reference kernel and Listing 8 transcribed, the pair kernel alone, the bundled\n"
-                 "meshes, pile:100 with and without a cloud, and the largest cloud that runs in real time (README, \"Speed\").",
+                 "meshes, pile:100 with and without a cloud, and the largest cloud that runs in real time (tests/benchmarks/README.md).",
                  "softbody bench");
     configure(app);
     bool quick = false, json = false, no_meshes = false, no_bodies = false, no_search = false, no_kernels = false;

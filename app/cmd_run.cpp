@@ -19,7 +19,7 @@ namespace softbody::app {
 
 int run_command(int argc, char** argv, int first) {
     CLI::App app("Opens the interactive demo: a window with the scene falling onto the ground and the panels on the left\n"
-                 "(README, \"The demo\"). With --frames it runs that many frames at a fixed frame time and prints a JSON\n"
+                 "(app/README.md, \"The demo\"). With --frames it runs that many frames at a fixed frame time and prints a JSON\n"
                  "summary instead of waiting for a person: how the tests and recordings drive it.",
                  first == 1 ? "softbody" : "softbody run");
     configure(app);

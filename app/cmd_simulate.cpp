@@ -76,7 +76,7 @@ private:
 
 int simulate_command(int argc, char** argv) {
     CLI::App app("Runs the physics alone, without a window or GL, and prints one JSON object: the particles, energy,\n"
-                 "centre of mass, lowest point, stability, a hash of the state and every rigid body (README, \"softbody simulate\").\n"
+                 "centre of mass, lowest point, stability, a hash of the state and every rigid body (app/README.md, \"softbody simulate\").\n"
                  "Notes (a normalised quaternion, a capped particle budget) go to stderr as 'softbody: note: ...'.",
                  "softbody simulate");
     configure(app);

@@ -52,7 +52,7 @@ struct BadInput : std::runtime_error {
 // The ground is told apart from the bodies by its user index, for the material callbacks.
 constexpr int kGround = 1;
 
-// Materials as softbody mixes them (README, "Choices the physics makes", Materials): between two
+// Materials as softbody mixes them (physics/README.md, "Materials"): between two
 // bodies restitution is the larger and friction sqrt(mu_1 mu_2); at the ground the body's own.
 // Bullet's own combiners multiply both, so its globals are pointed here instead.
 btScalar combined_restitution(const btCollisionObject* a, const btCollisionObject* b) {

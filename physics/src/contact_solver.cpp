@@ -236,8 +236,8 @@ void ContactSolver::setup(Manifold& m) {
                         dot(points[x].c_b, B.inv_I * points[y].c_b);
         }
     }
-    // The push apart is a spring (contact_hertz, twice that against the static world, as Box2D
-    // has it), stiffer where the point carries a load: a spring holding an impulse lambda a
+    // The push apart is a spring (contact_hertz, twice that against the static world, which
+    // moves for no one), stiffer where the point carries a load: a spring holding an impulse lambda a
     // substep at effective mass m stands compressed by lambda / (m h omega^2), so omega is raised
     // until that is at most stack_depth, up to a quarter of the substep rate (beyond it the
     // substeps cannot follow the spring, and a pyramid shivers).
@@ -520,7 +520,7 @@ void ContactSolver::each_in_slabs(const F& f) {
     run_block(blocks);
 }
 
-// Why slabs and not a colouring (Box2D v3's graph colouring, tried first): a colour takes
+// Why slabs and not a colouring (a graph colouring, tried first): a colour takes
 // manifolds from everywhere in a stack, and solved colour after colour the weight of a pyramid's
 // top layers reached the ground a layer a pass instead of in one pass from the bottom up (the
 // contacts' order): pyramid:20 took 47 ticks instead of 30 to fall asleep, and each tick 40%

@@ -5,7 +5,7 @@
 // rotation: Eq. 38 without its rotational term), side b a rigid body or the ground (static:
 // 1/m = 0, J^-1 = 0). The points one pair of bodies touch at (up to four) form a manifold.
 //
-// The order of a tick (after Box2D v3's soft step; the README's "Choices the physics makes"):
+// The order of a tick (physics/README.md, "Choices the physics makes"):
 //   prepare     once, where the contacts were found (the tick's start, or each part of the tick
 //               for a body turning fast: World::contact_intervals): each point's anchors r_a, r_b
 //               (Eq. 38's r), each manifold's coupling K (Eq. 38's denominators and what one
@@ -103,7 +103,7 @@ struct ContactWorld {
     ThreadPool* pool = nullptr;           // the world's threads (none: this one)
 };
 
-// A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,
+// A soft constraint: a spring of `hertz` with damping ratio `zeta`,
 // written for one implicit step of h. bias_rate turns a depth into a velocity; mass_scale and
 // impulse_scale soften the impulse so that the push apart is that spring's, whatever the masses.
 struct Softness {

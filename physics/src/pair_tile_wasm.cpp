@@ -16,7 +16,7 @@
 //     as leaving the pair out is.
 // Without a fused multiply-add the chains are longer than the AVX tiles', and every pair pays a
 // square root and a division more than they do; four lanes still make it 2.4 times the portable
-// tile's speed in the same browser, and twice the native portable tile's (README, "In the
+// tile's speed in the same browser, and twice the native portable tile's (tests/benchmarks/README.md, "In the
 // browser", has the figures).
 #if defined(__wasm_simd128__)
 

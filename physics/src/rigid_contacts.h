@@ -18,7 +18,7 @@ namespace softbody {
 
 // Appends every pair's contacts: each pair's boxes grown by their bodies' speculative margins
 // (ground_contact.h), overlapping pairs (two fixed bodies skipped) tested by `collide` within
-// the sum of the two margins. Restitution is the larger of the two bodies' (as Box2D mixes it),
+// the sum of the two margins. Restitution is the larger of the two bodies' (the bouncier one decides),
 // friction the geometric mean sqrt(mu_a mu_b); each defaults to the world's. `start`: the flat
 // state when the tick began, `h` the tick; `scratch` keeps its allocations from step to step.
 // Bodies marked in `asleep` (empty: none) are in the broad phase, but a pair of two that are

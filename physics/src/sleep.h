@@ -37,11 +37,11 @@
 
 namespace softbody {
 
-// m/s: a point slower than this is at rest. 5 cm/s (Box2D's choice too): a box sliding this
+// m/s: a point slower than this is at rest. 5 cm/s: a box sliding this
 // slowly on friction 0.4 stops within v^2 / (2 mu g) = 0.3 mm anyway, and one lifted this fast
 // rises 0.13 mm, so a body this slow for half a second is resting, not on its way anywhere; and
 // a pile's bodies, held by many contacts, keep a jitter of a few cm/s that a lower threshold
-// would not let sleep (measured: README, "Choices the physics makes").
+// would not let sleep (measured: physics/README.md, "Choices the physics makes").
 inline constexpr double kSleepSpeed = 0.05;
 // m: a body with a contact deeper than this is not at rest, however slow: it is still being
 // pushed out of an overlap, slowly (the push apart is overdamped, contact_solver.h), and asleep

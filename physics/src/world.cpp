@@ -313,7 +313,7 @@ ContactWorld World::contact_world() {
 
 // Every contact within reach of `reach` seconds (the tick, or the rest of it), found where the
 // bodies are now, each point within how far its bodies can move in that time (a speculative
-// contact, as Box2D finds them): rigid bodies with the ground and with one another, soft bodies'
+// contact, found before it touches): rigid bodies with the ground and with one another, soft bodies'
 // particles with rigid bodies. The last ones are kept for their impulses.
 // A sleeping body has none with the ground, fixed bodies or other sleeping ones; one found with
 // an awake body or a particle wakes its island, and they are found again (sleep.h).

@@ -25,8 +25,8 @@ void mesh_input(std::string_view data);
 // (scene_to_json) and load back to the same parameters.
 void scene_input(std::string_view data);
 
-// Each line as `--set KEY=VALUE` (set_param, split at the first '='); a refused one changes
-// nothing, an accepted one is valid and survives param_text and a scene file's round trip.
+// Each line as `--set KEY=VALUE` (set_scene_key, split at the first '='); a refused one changes
+// nothing, an accepted one is valid and survives key_text and a scene file's round trip.
 void set_input(std::string_view data);
 
 }  // namespace softbody::fuzz

@@ -77,7 +77,7 @@ TEST(Determinism, ChangingThreadsMidRunKeepsTheHash) {
 }
 
 // Rigid bodies: the contact solver's slabs, each body's free step, the broad phase and the
-// narrow phase share the threads (README, "Contacts on both cores"). 600 boxes and balls piling
+// narrow phase share the threads (physics/README.md, "Contacts on both cores"). 600 boxes and balls piling
 // into their bin for 1.5 s, over a thousand contact points: hundreds of manifolds, past what one
 // thread keeps to itself (kManifoldGrain a slab), so every thread count splits the work
 // differently; and a pyramid at rest.

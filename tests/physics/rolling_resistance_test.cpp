@@ -1,4 +1,4 @@
-// Rolling resistance (contact_solver.cpp, README "Choices the physics makes"): a round body
+// Rolling resistance (contact_solver.cpp, physics/README.md, "Choices the physics makes"): a round body
 // turning on a contact is held back by a torque of at most C_rr |F_n| r. Checked against the
 // closed forms of a ball rolling to a stop and of a ball spinning in place to a stop, and that it
 // does nothing when C_rr is 0 or the body does not roll.

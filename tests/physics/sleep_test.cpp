@@ -78,7 +78,7 @@ TEST(Sleep, PyramidSceneFileIsTheGeneratedPyramid) {
 
 // boxes:100: fifty boxes and fifty balls dropped into a bin, the balls with rolling resistance
 // 0.01 (without it a ball keeps rolling, or spinning in place about the normal of its one
-// contact point, and keeps its island awake: README, "Islands and sleeping").
+// contact point, and keeps its island awake: physics/README.md, "Islands and sleeping").
 Scene box_pile() { return generated_scene("boxes:100"); }
 
 // A ball dropped into a settled pile from above its middle, at 4 m/s: the pile's state with one

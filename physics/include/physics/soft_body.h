@@ -6,7 +6,7 @@
 // dampers), ground_contact.cpp (Eq. 24, 25 and impacts), integrators.cpp (the steps),
 // stability.cpp, divergence.cpp, energy.cpp.
 //
-// Topology apart from state, as Ten Minute Physics lays it out: the rest positions (every rest
+// Topology apart from state: the rest positions (every rest
 // length comes from them) never change after the body is built; x, Verlet's step
 // x_n - x_{n-1}, v and 1/m are the state, in flat arrays.
 #pragma once
