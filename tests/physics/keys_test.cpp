@@ -15,7 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const KeyInfo& world_key(std::string_view name) { return *find_key(KeyOwner::World, name); }
 const KeyInfo& body_key(std::string_view name) { return *find_key(KeyOwner::SoftBody, name); }
 
 // Sets a soft body's or the world's key from text, as `--set` reads it.
@@ -55,7 +54,9 @@ TEST(Keys, EveryKeyIsDescribedAndItsDefaultIsValid) {
         const std::string what = std::string(to_string(info.owner)) + " " + std::string(info.name);
         EXPECT_FALSE(info.meaning.empty()) << what;
         EXPECT_EQ(find_key(info.owner, info.name), &info) << what << ": named twice";
-        if (!info.alias) EXPECT_NO_THROW(check_key(info, default_value(info))) << what;
+        if (!info.alias) {
+            EXPECT_NO_THROW(check_key(info, default_value(info))) << what;
+        }
         if (info.slider_max > info.slider_min) {
             EXPECT_GE(info.slider_min, info.min) << what;
             EXPECT_LE(info.slider_max, info.max) << what;

@@ -190,7 +190,9 @@ TEST(SoftWorlds, PilesOfEightHoldInEveryOrderUnderEveryIntegrator) {
             }
             const std::string what = std::string(integrator) + (reversed ? ", reversed" : "");
             EXPECT_LT(worst, 0.1) << what << ": " << who;
-            if (keeps_energy(integrator)) EXPECT_LE(rise, 1e-4 * E0) << what;
+            if (keeps_energy(integrator)) {
+            EXPECT_LE(rise, 1e-4 * E0) << what;
+        }
         }
     }
 }
@@ -259,7 +261,9 @@ TEST(SoftWorlds, FastSoftHitsHoldUnderEveryIntegrator) {
             }
             const std::string what = std::string(integrator) + " at " + number(speed) + " m/s";
             EXPECT_LT(worst, 0.1) << what << ": " << who;
-            if (keeps_energy(integrator)) EXPECT_LE(rise, 1e-5 * E0) << what;
+            if (keeps_energy(integrator)) {
+            EXPECT_LE(rise, 1e-5 * E0) << what;
+        }
         }
     }
 }
@@ -325,7 +329,9 @@ TEST(SoftWorlds, SoftBallOnARigidPyramidStandsAndGainsNoEnergy) {
         double moved = 0.0;
         for (std::size_t r = 0; r < world.rigid_body_count(); ++r) moved = std::max(moved, length(world.rigid_motion(r).x - start[r]));
         EXPECT_LT(moved, 0.05) << integrator;
-        if (keeps_energy(integrator)) EXPECT_LE(rise, 1e-3 * E0) << integrator;
+        if (keeps_energy(integrator)) {
+            EXPECT_LE(rise, 1e-3 * E0) << integrator;
+        }
     }
 }
 
@@ -360,7 +366,9 @@ TEST(SoftWorlds, HeavyBallsCrushSoftBallsWithoutADivergence) {
                     ASSERT_EQ(world.status(), Status::Ok) << integrator << ": " << world.divergence();
                     rise = std::max(rise, world.energy().total() - E0);
                 }
-                if (keeps_energy(integrator)) EXPECT_LE(rise, 1e-6 * E0) << integrator << (wall ? " wall" : " ground") << " m " << particle_mass;
+                if (keeps_energy(integrator)) {
+            EXPECT_LE(rise, 1e-6 * E0) << integrator << (wall ? " wall" : " ground") << " m " << particle_mass;
+        }
             }
         }
     }

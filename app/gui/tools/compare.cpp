@@ -26,8 +26,8 @@ private:
                                         Integrator::RK4};
         const Integrator main = c.session.world().settings().integrator;
         const auto swatch = [](Integrator integrator) {
-            const glm::vec3 c = integrator_color(integrator);
-            ImGui::ColorButton("##colour", ImVec4(c.r, c.g, c.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+            const glm::vec3 colour = integrator_color(integrator);
+            ImGui::ColorButton("##colour", ImVec4(colour.r, colour.g, colour.b, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
             ImGui::SameLine();
         };
         if (!c.session.comparing()) {

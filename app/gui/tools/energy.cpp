@@ -17,7 +17,7 @@ namespace {
 class EnergyTool : public Tool {
 public:
     const char* title() const override { return "Energy"; }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { energy_body(c); }
 
 private:
@@ -111,14 +111,14 @@ private:
         const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
         for (std::size_t k = 0; k < worlds; ++k) {
             const Integrator integrator = k == 0 ? c.session.world().settings().integrator : compared[k - 1].setup.integrator;
-            const glm::vec3 c = integrator_color(integrator);
+            const glm::vec3 colour = integrator_color(integrator);
             std::vector<ImVec2> points;
             for (const auto& s : history) {
                 if (s.compared.size() + 1 != worlds || !std::isfinite(total(s, k))) continue;
                 points.emplace_back(origin.x + float((s.time - t0) / (t1 - t0)) * size.x,
                                     origin.y + size.y - float((total(s, k) - lo) / (hi - lo)) * size.y);
             }
-            draw->AddPolyline(points.data(), static_cast<int>(points.size()), ImColor(c.r, c.g, c.b), 0, 2.0f);
+            draw->AddPolyline(points.data(), static_cast<int>(points.size()), ImColor(colour.r, colour.g, colour.b), 0, 2.0f);
         }
         ImGui::Dummy(size);
         ImGui::TextDisabled("from %.1f to %.1f J", lo, hi);

@@ -18,7 +18,7 @@ class InspectorTool : public Tool {
 public:
     const char* title() const override { return "Inspector"; }
     bool shown(const Session& s) const override { return s.particle_inspection() || s.rigid_inspection(); }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { inspector_body(c); }
 
 private:

@@ -18,7 +18,7 @@ class LastCollisionTool : public Tool {
 public:
     const char* title() const override { return "Last collision"; }
     bool shown(const Session& s) const override { return s.world().rigid_body_count() > 0; }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { last_collision_body(c); }
 
 private:

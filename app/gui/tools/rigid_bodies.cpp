@@ -17,7 +17,7 @@ class RigidBodiesTool : public Tool {
 public:
     const char* title() const override { return "Rigid bodies"; }
     bool shown(const Session& s) const override { return s.world().rigid_body_count() > 0; }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { rigid_bodies_body(c); }
 
 private:

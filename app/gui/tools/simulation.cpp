@@ -18,7 +18,7 @@ namespace {
 class SimulationTool : public Tool {
 public:
     const char* title() const override { return "Simulation"; }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { simulation_body(c); }
 
 private:

@@ -17,7 +17,7 @@ namespace {
 class StabilityTool : public Tool {
 public:
     const char* title() const override { return "Stability"; }
-    bool open(const Session& s) const override { return true; }
+    bool open(const Session&) const override { return true; }
     void draw(ToolContext& c) override { stability_body(c); }
 
 private:
