@@ -45,6 +45,11 @@ void History::before_tick(World& world) {
     const std::uint64_t t = world.ticks();
     if (keyframes_.empty() || t < oldest_tick() || t > newest_) start(world);  // ticked behind our back
     if (t < newest_) {
+        // Something the inputs cannot replay happened at this tick (a pin, a body made or
+        // unmade): the world takes it from that moment's keyframe before going on.
+        const auto at = std::lower_bound(keyframes_.begin(), keyframes_.end(), t,
+                                         [](const Keyframe& k, std::uint64_t tick) { return k.tick < tick; });
+        if (at != keyframes_.end() && at->tick == t && at->forced) world.restore(at->state);
         apply(world, inputs_[t - inputs_start_]);  // the past: what this tick ran with
         return;
     }
@@ -82,7 +87,7 @@ void History::keyframe_now(const World& world) {
         return;
     }
     if (keyframes_.back().tick == t) keyframes_.pop_back();
-    keyframes_.push_back({t, world.snapshot()});
+    keyframes_.push_back({t, world.snapshot(), true});
 }
 
 void History::trim() {

@@ -75,6 +75,7 @@ private:
     struct Keyframe {
         std::uint64_t tick = 0;
         WorldSnapshot state;
+        bool forced = false;  // kept by keyframe_now: what the inputs cannot replay happened here
     };
 
     static Settings settings_of(const World& world);
