@@ -70,7 +70,10 @@ void Panels::help() {
 }
 
 void Panels::error_banner(Session& demo, View&) {
-    if (demo.error().empty()) return;
+    if (demo.error().empty()) {
+        notice_banner(demo);
+        return;
+    }
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
@@ -88,6 +91,23 @@ void Panels::error_banner(Session& demo, View&) {
             demo.clear_error();
         }
     }
+    ImGui::End();
+    ImGui::PopStyleColor();
+}
+
+// A notice (what an action did) at the top right, until dismissed or replaced.
+void Panels::notice_banner(Session& session) {
+    if (session.notice().empty()) return;
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
+    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.08f, 0.30f, 0.20f, 0.94f));
+    ImGui::Begin("##notice", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(session.notice().c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::SmallButton("OK")) session.clear_notice();
     ImGui::End();
     ImGui::PopStyleColor();
 }

@@ -30,6 +30,7 @@ public:
 private:
     void help();
     void error_banner(Session& session, View& view);
+    void notice_banner(Session& session);
 
     float scale_;
     std::vector<std::unique_ptr<Tool>> tools_;
