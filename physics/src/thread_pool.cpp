@@ -88,7 +88,8 @@ bool ThreadPool::claim(std::uint32_t& index) {
 }
 
 ThreadPool::WakeHistory& ThreadPool::wake_history(const std::function<void(std::size_t)>& task) {
-    // The type's name is a string the program holds once: its address is enough to tell sites apart.
+    // The type's name is a string the program holds once (should it hold two copies, a site only
+    // keeps two histories): its address is enough to tell sites apart.
     const char* site = task.target_type().name();
     WakeHistory& history = wake_histories_[(reinterpret_cast<std::uintptr_t>(site) >> 4) % wake_histories_.size()];
     if (history.site != site) history = {site, 0, 0};
@@ -158,8 +159,8 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
     batch_.store(number << 32);  // opens the batch; publishes task_, finished_ and count_
     // Waking a sleeper is a system call on this thread's time, and the sleeper takes tens of
     // microseconds to come. When the last wakes for this call site's batches brought no worker in
-    // time to take a task (batches too short, or cores busy with other programs), its next few
-    // batches are left to the workers already awake, and to the caller.
+    // time to share the batch with the caller (batches too short, or cores busy with other
+    // programs), its next few batches are left to the workers already awake, and to the caller.
     WakeHistory* woke = nullptr;
     if (sleepers_.load() > 0) {
         WakeHistory& history = wake_history(task);
@@ -180,7 +181,9 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
     }
     // Every task is claimed. Those the workers took may still be running: wait for those alone.
     const std::uint32_t theirs = count - mine;
-    if (woke) woke->backoff = theirs > 0 ? 0 : std::min(2 * woke->backoff + 1, kMostWakesSkipped);
+    // A wake paid when the batch was shared. A woken worker that took every task did not share
+    // it: it ran while the caller was off its core (the system put the two on one core).
+    if (woke) woke->backoff = theirs > 0 && mine > 0 ? 0 : std::min(2 * woke->backoff + 1, kMostWakesSkipped);
     const auto finished = [&] { return finished_.load() == theirs; };
     if (theirs > 0 && spin_until(finished) != Spun::Ready) {
         std::unique_lock lock(mutex_);
