@@ -158,9 +158,9 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
     count_.store(count, std::memory_order_release);
     batch_.store(number << 32);  // opens the batch; publishes task_, finished_ and count_
     // Waking a sleeper is a system call on this thread's time, and the sleeper takes tens of
-    // microseconds to come. When the last wakes for this call site's batches brought no worker in
-    // time to share the batch with the caller (batches too short, or cores busy with other
-    // programs), its next few batches are left to the workers already awake, and to the caller.
+    // microseconds to come, or longer when other programs hold the cores. When the last wake for
+    // this call site's batches did not pay, its next few batches are left to the workers already
+    // awake, and to the caller.
     WakeHistory* woke = nullptr;
     if (sleepers_.load() > 0) {
         WakeHistory& history = wake_history(task);
@@ -174,6 +174,7 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
             history.skipped = 0;
         }
     }
+    const Clock::time_point start = woke ? Clock::now() : Clock::time_point{};
     std::uint32_t mine = 0, index = 0;
     while (claim(index)) {
         task(index);
@@ -181,9 +182,7 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
     }
     // Every task is claimed. Those the workers took may still be running: wait for those alone.
     const std::uint32_t theirs = count - mine;
-    // A wake paid when the batch was shared. A woken worker that took every task did not share
-    // it: it ran while the caller was off its core (the system put the two on one core).
-    if (woke) woke->backoff = theirs > 0 && mine > 0 ? 0 : std::min(2 * woke->backoff + 1, kMostWakesSkipped);
+    const Clock::time_point claimed = woke ? Clock::now() : Clock::time_point{};
     const auto finished = [&] { return finished_.load() == theirs; };
     if (theirs > 0 && spin_until(finished) != Spun::Ready) {
         std::unique_lock lock(mutex_);
@@ -192,6 +191,15 @@ void ThreadPool::run_batch(std::uint32_t count, const std::function<void(std::si
         caller_asleep_.store(false);
     }
     task_ = nullptr;
+    if (woke) {
+        // The wake paid when the batch ended sooner than on the caller alone: the workers' tasks,
+        // at the caller's own pace, would have taken longer than the caller then waited for them.
+        // A worker that took every task did not share the batch: it ran while the caller was off
+        // its core (the system had put the two on one core).
+        const auto waited = Clock::now() - claimed;
+        const bool paid = mine > 0 && theirs > 0 && (claimed - start) / mine * theirs > waited;
+        woke->backoff = paid ? 0 : std::min(2 * woke->backoff + 1, kMostWakesSkipped);
+    }
 }
 
 }  // namespace softbody
