@@ -12,7 +12,11 @@
 // long as a whole force pass on a few hundred particles. So a worker that has run out of tasks
 // first spins for kSpin, watching for the next batch, and only then sleeps: the substeps of a
 // tick, a few microseconds apart, find the workers awake. A pool that nobody calls for kSpin goes
-// back to costing nothing.
+// back to costing nothing. Where other programs want the cores, spinning takes time they, or
+// the caller, need: a worker that finds it was descheduled while it spun sleeps straight after
+// each batch for kCrowded. And the caller wakes sleeping workers for a call site's batches only
+// while that pays (the batch ends sooner than on the caller alone); else it leaves the next few
+// of them to itself and to the workers already awake.
 #pragma once
 
 #include <algorithm>
@@ -67,7 +71,7 @@ private:
     struct WakeHistory {
         const char* site = nullptr;
         std::uint32_t skipped = 0;  // batches opened without waking since the last wake
-        std::uint32_t backoff = 0;  // how many to skip: 0 while wakes pay, doubled when one brought nobody in time
+        std::uint32_t backoff = 0;  // how many to skip: 0 while wakes pay, 2 b + 1 after one that did not
     };
     WakeHistory& wake_history(const std::function<void(std::size_t)>& task);
 
