@@ -886,7 +886,7 @@ struct BusyScene {
 };
 
 // A soft ball (ball:3, 642 particles) dropped onto a small pyramid of rigid boxes (pyramid:3): a
-// soft body on rigid bodies with few of either, where a batch is a few microseconds of work.
+// soft body on rigid bodies with few of either, where most batches are a few microseconds of work.
 const std::string kBallOnPyramid = "ball:3 on pyramid:3";
 
 // One scene of each kind: soft clouds, soft bodies stacked, piles, pyramids, soft on rigid.
