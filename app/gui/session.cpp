@@ -12,13 +12,13 @@
 namespace softbody::app {
 
 Session::Session(const Scene& scene) : clock_(scene.settings.dt) {
-    world_ = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
+    world_ = std::make_unique<World>(scene, WorldOptions{kDefaultThreads, false});
     after_load(scene);
 }
 
 bool Session::load(const Scene& scene) {
     try {
-        auto world = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
+        auto world = std::make_unique<World>(scene, WorldOptions{kDefaultThreads, false});
         world_ = std::move(world);
         after_load(scene);
         error_.clear();

@@ -99,6 +99,12 @@ private:
 // Hardware threads, at least 1.
 int hardware_threads();
 
+// The threads a world runs on unless told otherwise: two, whatever the machine (the same scene
+// gives the same bits at any count; a default that followed the machine would make runs differ in
+// speed, never in results, but the setting would still not be the same everywhere). The pool
+// yields when a core is busy, so two is never much slower than one.
+inline constexpr int kDefaultThreads = 2;
+
 // Splits [0, count) into consecutive chunks of at least `grain` items (one when there are too
 // few to share, or no pool), a few a thread, and calls f(chunk, begin, end) for each on the
 // pool's threads. Returns the number of chunks. Results kept per chunk and joined in chunk order
