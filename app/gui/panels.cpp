@@ -30,11 +30,25 @@ void Panels::draw(Session& session, View& view, float fps) {
     if (show_help) help();
     if (!show_panels) return;
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float scale = scale_ * ui.text_size;
+    ImGui::GetIO().FontGlobalScale = ui.text_size;
+    // The panel takes 360 px (at 1x) on the left, or nearly the whole width of a narrow screen
+    // (a phone held upright); there it starts folded, so the view is what shows first.
+    panel_width_ = std::min(360.0f * scale, viewport->WorkSize.x - 16.0f * scale_);
+    if (first_frame_ && viewport->WorkSize.x < 600.0f * scale_) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
+    first_frame_ = false;
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 8 * scale_, viewport->WorkPos.y + 8 * scale_), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(360 * scale_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
-    ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::PushItemWidth(-150 * scale_);
-    ToolContext context{session, view, recorder, scale_, fps};
+    ImGui::SetNextWindowSize(ImVec2(panel_width_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
+    // Folds by its title bar's arrow (or a double click on it); the keyboard moves through it
+    // (the window's navigation is on).
+    const bool open = ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    folded_ = ImGui::IsWindowCollapsed();
+    if (!open) {
+        ImGui::End();
+        return;
+    }
+    ImGui::PushItemWidth(-std::min(150.0f * scale, 0.42f * panel_width_));
+    ToolContext context{session, view, ui, recorder, scale, fps};
     for (const auto& tool : tools_) {
         if (!tool->shown(session)) continue;
         if (!ImGui::CollapsingHeader(tool->title(), tool->open(session) ? ImGuiTreeNodeFlags_DefaultOpen : 0)) continue;
