@@ -192,21 +192,8 @@ void apply_camera_options(const CameraOptions& options, render::Camera& camera) 
     if (options.fov) camera.fov_y = *options.fov;
 }
 
-int render_bench(int argc, char** argv);
-
-}  // namespace
-
-int render_command(int argc, char** argv) {
-    for (int i = 2; i < argc; ++i) {
-        if (std::string_view(argv[i]) == "--bench") return render_bench(argc, argv);
-    }
-    CLI::App app("Simulates from t = 0 at the fixed tick and draws it headless (OSMesa, no display): one PNG per time\n"
-                 "asked for (--at), an animation's frames (--frames, --seconds) or one H.264 video (--video). Prints a\n"
-                 "JSON line per image (time, tick, state_hash, file, memory_kib), or one for the video. Same inputs, same bytes.",
-                 "softbody render");
-    configure(app);
-    SceneOptions scene;
-    scene.add_to(app);
+// softbody render's command line as given: what the options write into, before the checks.
+struct RenderArgs {
     std::vector<std::string> at_texts, camera_texts;
     std::int64_t sequence_frames = 0;
     double seconds = -1.0;
@@ -215,70 +202,113 @@ int render_command(int argc, char** argv) {
     bool overwrite = false, hide_ground = false, no_shadows = false, no_pattern = false, flip_normals = false,
          particle_mesh = false;
     int samples = 4;
-    int threads = hardware_threads();
+    int threads = kDefaultThreads;
+    bool bench = false;  // taken before the options are read (render_bench)
+};
+
+// What to render, checked: the scene, the times, the image and its look, where it goes.
+struct RenderJob {
+    SceneOptions scene;
+    std::vector<double> times;         // sorted, each once
+    std::int64_t sequence_frames = 0;  // an animation's frames (--frames, --seconds); 0 for --at
+    double fps = 60.0;
+    std::string out_dir, video_path;   // one of the two is set
+    bool overwrite = false, hide_ground = false;
+    int width = 800, height = 600;
+    int threads = 1;
+    CameraOptions camera;
+    render::Frame frame;               // its overlays, appearance and deliberate faults
+};
+
+// The options of softbody render, in the groups its help shows.
+void declare_options(CLI::App& app, RenderArgs& args, SceneOptions& scene) {
+    scene.add_to(app);
     const std::string output = "What to draw and where", look = "Camera and look", debug = "Deliberate faults (the screenshot tests')";
-    app.add_option("--at", at_texts, "times in s; each image is drawn between the two ticks around it (default: none)")
+    app.add_option("--at", args.at_texts, "times in s; each image is drawn between the two ticks around it (default: none)")
         ->option_text("T1,T2,...")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->allow_extra_args(false)
         ->group(output);
-    add_whole(app, "--frames", sequence_frames, 1, 1000000, "an animation: N frames at --fps from t = 0, <scene>_0000.png, ... (default: none)")
+    add_whole(app, "--frames", args.sequence_frames, 1, 1000000, "an animation: N frames at --fps from t = 0, <scene>_0000.png, ... (default: none)")
         ->group(output);
-    add_number(app, "--seconds", seconds, 0.0, 1e5, "an animation as long as T seconds, instead of --frames (default: none)")->type_name("T")->group(output);
-    add_number(app, "--fps", fps, 1.0, 1000.0, "frames a second of an animation or video (default 60)")->type_name("F")->group(output);
-    app.add_option("--out", out_dir, "folder for DIR/<scene>_t<time>.png, made if missing (this or --video is required)")
+    add_number(app, "--seconds", args.seconds, 0.0, 1e5, "an animation as long as T seconds, instead of --frames (default: none)")->type_name("T")->group(output);
+    add_number(app, "--fps", args.fps, 1.0, 1000.0, "frames a second of an animation or video (default 60)")->type_name("F")->group(output);
+    app.add_option("--out", args.out_dir, "folder for DIR/<scene>_t<time>.png, made if missing (this or --video is required)")
         ->type_name("DIR")
         ->group(output);
-    app.add_option("--video", video_path,
+    app.add_option("--video", args.video_path,
                    "one H.264 MP4 instead, by ffmpeg (without it: PNGs in FILE_frames/) (default: none)")
         ->type_name("FILE.mp4")
         ->group(output);
-    app.add_flag("--overwrite", overwrite, "replace an existing video file (without it, one is never replaced)")->group(output);
-    app.add_option("--size", size_text, "image size, 16..8192 each way; a video's sides even (default 800x600)")
+    app.add_flag("--overwrite", args.overwrite, "replace an existing video file (without it, one is never replaced)")->group(output);
+    app.add_option("--size", args.size_text, "image size, 16..8192 each way; a video's sides even (default 800x600)")
         ->type_name("WxH")
         ->group(output);
-    add_whole(app, "--threads", threads, 1, 256, "threads for the physics (default " + std::to_string(threads) + ", this machine's)")
+    add_whole(app, "--threads", args.threads, 1, 256, "threads for the physics (default " + std::to_string(args.threads) + "; the same pictures at any count)")
         ->group(output);
-    app.add_option("--camera", camera_texts,
+    app.add_option("--camera", args.camera_texts,
                    "yaw=, pitch=, fov= (deg), distance=M, zoom=F, target=X:Y:Z, follow (default: framed once)")
         ->option_text("KEY=VALUE,...")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->allow_extra_args(false)
         ->group(look);
-    app.add_option("--overlay", overlay_text,
+    app.add_option("--overlay", args.overlay_text,
                    "particles, springs, pins, com, velocity, forces, normals, angular, contacts, links, none (default pins,links)")
         ->type_name("NAME,...")
         ->group(look);
-    app.add_option("--body", body_style, "solid, ghost (see-through), wireframe or hidden (default solid)")->type_name("STYLE")->group(look);
-    app.add_option("--body-color", color_text, "the soft body's colour, six hex digits (default: the demo's orange)")
+    app.add_option("--body", args.body_style, "solid, ghost (see-through), wireframe or hidden (default solid)")->type_name("STYLE")->group(look);
+    app.add_option("--body-color", args.color_text, "the soft body's colour, six hex digits (default: the demo's orange)")
         ->type_name("RRGGBB")
         ->group(look);
-    app.add_flag("--no-ground", hide_ground, "draw without the ground (the physics keeps it)")->group(look);
-    app.add_flag("--no-shadows", no_shadows, "no shadows")->group(look);
-    app.add_flag("--no-pattern", no_pattern, "a plain body, without the soft checks that show it turn")->group(look);
-    add_whole(app, "--samples", samples, 1, 4, "multisample anti-aliasing, 1 (off) to 4 (default 4)")->group(look);
-    bool bench = false;  // taken before the options are read (render_bench)
-    app.add_flag("--bench", bench, "time the renderer instead (softbody render --bench --help)")
+    app.add_flag("--no-ground", args.hide_ground, "draw without the ground (the physics keeps it)")->group(look);
+    app.add_flag("--no-shadows", args.no_shadows, "no shadows")->group(look);
+    app.add_flag("--no-pattern", args.no_pattern, "a plain body, without the soft checks that show it turn")->group(look);
+    add_whole(app, "--samples", args.samples, 1, 4, "multisample anti-aliasing, 1 (off) to 4 (default 4)")->group(look);
+    app.add_flag("--bench", args.bench, "time the renderer instead (softbody render --bench --help)")
         ->group(look);
-    app.add_option("--debug-offset", offset_text, "draw the soft bodies shifted by DX,DY,DZ metres (default 0,0,0)")
+    app.add_option("--debug-offset", args.offset_text, "draw the soft bodies shifted by DX,DY,DZ metres (default 0,0,0)")
         ->type_name("DX,DY,DZ")
         ->group(debug);
-    app.add_flag("--debug-flip-normals", flip_normals, "draw the surface normals flipped")->group(debug);
-    app.add_flag("--debug-particle-mesh", particle_mesh, "draw a reduced body's simulated particles instead of its full mesh")
+    app.add_flag("--debug-flip-normals", args.flip_normals, "draw the surface normals flipped")->group(debug);
+    app.add_flag("--debug-particle-mesh", args.particle_mesh, "draw a reduced body's simulated particles instead of its full mesh")
         ->group(debug);
-    app.footer(exit_codes_help(true));
-    if (!parse(app, argc, argv, 2)) return kOk;
+}
 
-    // The values that are lists or pairs, checked as the options' own values are.
-    std::vector<double> times;
-    for (const std::string& text : at_texts) {
+// The look of the images: overlays, the body's style and colour, shadows, pattern, samples,
+// and the deliberate faults.
+void read_look(const CLI::App& app, const RenderArgs& args, render::Frame& frame) {
+    if (app.count("--overlay") > 0) parse_overlays(args.overlay_text, frame.overlays);
+    if (app.count("--body") > 0) {
+        const std::string& body_style = args.body_style;
+        if (body_style == "solid") frame.appearance.body = render::BodyStyle::Solid;
+        else if (body_style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
+        else if (body_style == "wireframe") frame.appearance.body = render::BodyStyle::Wireframe;
+        else if (body_style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
+        else throw UsageError("--body: expected solid, ghost, wireframe or hidden, got '" + body_style + "'");
+    }
+    if (app.count("--body-color") > 0) frame.appearance.body_color = parse_color(args.color_text);
+    if (args.no_shadows) frame.appearance.shadows = false;
+    if (args.no_pattern) frame.appearance.pattern = false;
+    frame.appearance.samples = args.samples;
+    if (!args.offset_text.empty()) frame.debug.body_offset = parse_vec3("--debug-offset", args.offset_text, ',');
+    frame.debug.flip_normals = args.flip_normals;
+    frame.debug.particle_mesh = args.particle_mesh;
+}
+
+// The values that are lists or pairs, checked as the options' own values are, and the options
+// checked against each other: the job, or a UsageError naming the option at fault.
+void check_options(const CLI::App& app, RenderArgs& args, RenderJob& job) {
+    std::vector<double>& times = job.times;
+    for (const std::string& text : args.at_texts) {
         for (std::string_view t : split(text, ',')) times.push_back(parse_double("--at", t, 0.0, 1e5));
     }
+    const std::string& video_path = args.video_path;
     if (!video_path.empty()) {
         std::string extension = std::filesystem::path(video_path).extension().string();
         std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (extension != ".mp4") throw UsageError("--video: expected a file name ending in .mp4, got '" + video_path + "'");
     }
+    const std::string& out_dir = args.out_dir;
     if (app.count("--out") > 0) {
         if (out_dir.empty()) throw UsageError("--out: expected a folder");
         // `--out shot.png` would make a folder of that name: say where the images go instead.
@@ -289,27 +319,14 @@ int render_command(int argc, char** argv) {
                              (extension == ".mp4" ? " (a video: --video FILE.mp4)" : ""));
         }
     }
-    int width = 800, height = 600;
-    if (!size_text.empty()) std::tie(width, height) = parse_size(size_text);
-    CameraOptions camera_options;
-    for (const std::string& text : camera_texts) parse_camera(text, camera_options);
-    render::Frame frame;
-    if (app.count("--overlay") > 0) parse_overlays(overlay_text, frame.overlays);
-    if (app.count("--body") > 0) {
-        if (body_style == "solid") frame.appearance.body = render::BodyStyle::Solid;
-        else if (body_style == "ghost") frame.appearance.body = render::BodyStyle::Ghost;
-        else if (body_style == "wireframe") frame.appearance.body = render::BodyStyle::Wireframe;
-        else if (body_style == "hidden") frame.appearance.body = render::BodyStyle::Hidden;
-        else throw UsageError("--body: expected solid, ghost, wireframe or hidden, got '" + body_style + "'");
-    }
-    if (app.count("--body-color") > 0) frame.appearance.body_color = parse_color(color_text);
-    if (no_shadows) frame.appearance.shadows = false;
-    if (no_pattern) frame.appearance.pattern = false;
-    frame.appearance.samples = samples;
-    if (!offset_text.empty()) frame.debug.body_offset = parse_vec3("--debug-offset", offset_text, ',');
-    frame.debug.flip_normals = flip_normals;
-    frame.debug.particle_mesh = particle_mesh;
+    int& width = job.width;
+    int& height = job.height;
+    if (!args.size_text.empty()) std::tie(width, height) = parse_size(args.size_text);
+    for (const std::string& text : args.camera_texts) parse_camera(text, job.camera);
+    read_look(app, args, job.frame);
 
+    std::int64_t& sequence_frames = args.sequence_frames;
+    const double seconds = args.seconds, fps = args.fps;
     if (sequence_frames > 0 && !times.empty()) throw UsageError("--at and --frames: give one or the other");
     if (seconds >= 0.0 && (sequence_frames > 0 || !times.empty())) throw UsageError("--seconds: give it instead of --frames or --at");
     // T seconds at F frames a second: the frames at 0, 1/F, ... before T, so the clip lasts T.
@@ -321,51 +338,89 @@ int render_command(int argc, char** argv) {
         throw UsageError("--size " + std::to_string(width) + "x" + std::to_string(height) +
                          ": a video needs even sides (H.264 stores colour at half resolution)");
     }
-    if (overwrite && !video) throw UsageError("--overwrite goes with --video");
+    if (args.overwrite && !video) throw UsageError("--overwrite goes with --video");
     for (std::int64_t k = 0; k < sequence_frames; ++k) times.push_back(double(k) / fps);
     if (times.empty()) throw UsageError("--at T1,T2,... or --frames N is required");
     if (out_dir.empty() && !video) throw UsageError("--out DIR or --video FILE.mp4 is required");
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
 
-    // Inputs first (cheap, and the user's most likely mistakes), then the output folder, then GL.
-    const Scene resolved = scene.resolve();
-    const WorldSettings& params = resolved.settings;
-    World world(resolved, WorldOptions{threads, false});
-    for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
-    const std::string name = scene.name();
-    for (std::size_t i = 1; i < times.size() && sequence_frames == 0; ++i) {
+    job.sequence_frames = sequence_frames;
+    job.fps = fps;
+    job.out_dir = out_dir;
+    job.video_path = video_path;
+    job.overwrite = args.overwrite;
+    job.hide_ground = args.hide_ground;
+    job.threads = args.threads;
+}
+
+// Reads and checks the command line into `job`; false when it only asked for help.
+bool read_options(int argc, char** argv, RenderJob& job) {
+    CLI::App app("Simulates from t = 0 at the fixed tick and draws it headless (OSMesa, no display): one PNG per time\n"
+                 "asked for (--at), an animation's frames (--frames, --seconds) or one H.264 video (--video). Prints a\n"
+                 "JSON line per image (time, tick, state_hash, file, memory_kib), or one for the video. Same inputs, same bytes.",
+                 "softbody render");
+    configure(app);
+    RenderArgs args;
+    declare_options(app, args, job.scene);
+    app.footer(exit_codes_help(true));
+    if (!parse(app, argc, argv, 2)) return false;
+    check_options(app, args, job);
+    return true;
+}
+
+// --at times are written to the millisecond: two that round alike would write one file twice.
+void check_file_names(const RenderJob& job) {
+    const std::vector<double>& times = job.times;
+    for (std::size_t i = 1; i < times.size() && job.sequence_frames == 0; ++i) {
         if (time_label(times[i]) == time_label(times[i - 1])) {
             throw UsageError("--at: " + std::to_string(times[i - 1]) + " and " + std::to_string(times[i]) +
                              " round to the same file name (times are written to the millisecond)");
         }
     }
-    const std::filesystem::path dir(out_dir);
-    // The video refuses to replace a file and starts ffmpeg (or, without it, makes the frames'
-    // folder) before the first frame is drawn.
-    std::unique_ptr<VideoWriter> writer;
-    if (video) {
-        std::error_code ec;
-        if (!overwrite && std::filesystem::exists(std::filesystem::symlink_status(video_path, ec))) {
-            throw InputError(video_path + ": already exists; not overwriting it (--overwrite replaces it)");
-        }
-        writer = std::make_unique<VideoWriter>(video_path, width, height, fps, overwrite);
-        if (!writer->has_ffmpeg()) std::cerr << "softbody: " << writer->missing_ffmpeg_message() << "\n";
-    } else {
-        prepare_output(dir);
-    }
+}
 
-    OffscreenContext context(width, height);
-    render::Renderer renderer(context.loader());
-    if (width > renderer.info().max_size || height > renderer.info().max_size) {
-        throw InputError("--size " + std::to_string(width) + "x" + std::to_string(height) + ": this OpenGL (" +
-                         renderer.info().renderer + ") draws at most " + std::to_string(renderer.info().max_size) +
-                         " pixels a side");
+// Where the images go, made ready before the first frame is drawn: the video refuses to replace
+// a file and starts ffmpeg (or, without it, makes the frames' folder); else the output folder
+// is made and checked (null writer).
+std::unique_ptr<VideoWriter> open_output(const RenderJob& job) {
+    if (job.video_path.empty()) {
+        prepare_output(job.out_dir);
+        return nullptr;
     }
+    std::error_code ec;
+    if (!job.overwrite && std::filesystem::exists(std::filesystem::symlink_status(job.video_path, ec))) {
+        throw InputError(job.video_path + ": already exists; not overwriting it (--overwrite replaces it)");
+    }
+    auto writer = std::make_unique<VideoWriter>(job.video_path, job.width, job.height, job.fps, job.overwrite);
+    if (!writer->has_ffmpeg()) std::cerr << "softbody: " << writer->missing_ffmpeg_message() << "\n";
+    return writer;
+}
 
+// The one line for a whole video: where it is (or where its frames are), and its shape.
+void print_video_line(const RenderJob& job, VideoWriter& writer, const World& world) {
+    writer.finish();
+    nlohmann::ordered_json line = {
+        {"video", writer.has_ffmpeg() ? nlohmann::ordered_json(job.video_path) : nlohmann::ordered_json(nullptr)},
+        {"frames", writer.frames()}, {"fps", job.fps}, {"seconds", double(writer.frames()) / job.fps},
+        {"width", job.width}, {"height", job.height}, {"tick", world.ticks()}, {"state_hash", hex(world.state_hash())},
+        {"memory_kib", resident_memory().now_kib},
+    };
+    if (!writer.has_ffmpeg()) line["frames_folder"] = writer.frames_folder();
+    std::cout << line.dump() << std::endl;
+}
+
+// The frame loop: the world run up to each time, drawn between the two ticks around it, and
+// each image written (a PNG and its JSON line, or a frame of the video). kDiverged when the
+// simulation fails before the last time.
+int render_frames(RenderJob& job, const WorldSettings& params, World& world, render::Renderer& renderer, VideoWriter* writer) {
+    render::Frame& frame = job.frame;
+    const CameraOptions& camera_options = job.camera;
+    const std::int64_t sequence_frames = job.sequence_frames;
+    const int width = job.width, height = job.height;
     const float aspect = float(width) / float(height);
     match_ground(params, frame.appearance);
-    if (hide_ground) frame.appearance.ground = false;  // drawn without it; the physics keeps it
+    if (job.hide_ground) frame.appearance.ground = false;  // drawn without it; the physics keeps it
     apply_camera_options(camera_options, frame.camera);
     frame_body(world, aspect, frame.camera, camera_options.zoom);
     const auto fix_camera = [&] {
@@ -374,6 +429,8 @@ int render_command(int argc, char** argv) {
     };
     fix_camera();
 
+    const std::string name = job.scene.name();
+    const std::filesystem::path dir(job.out_dir);
     const double dt = double(params.dt);
     // File names: "t<time>" for --at; for --frames the frame number, padded with zeros to the
     // last one's width (at least 4), so that name order is frame order.
@@ -383,8 +440,8 @@ int render_command(int argc, char** argv) {
         const std::string number = std::to_string(k);
         return std::string(digits - std::min(digits, number.size()), '0') + number;
     };
-    for (std::size_t k = 0; k < times.size(); ++k) {
-        const double t = times[k];
+    for (std::size_t k = 0; k < job.times.size(); ++k) {
+        const double t = job.times[k];
         // The image at time t lies between ticks n - 1 and n: n = ceil(t / dt).
         // dt is a float (0.02f is not 0.02): a time within 1e-4 tick of a tick is that tick.
         double ticks_exact = t / dt;
@@ -395,7 +452,7 @@ int render_command(int argc, char** argv) {
         if (world.status() != Status::Ok) {
             if (writer) writer->finish();  // the frames up to the divergence make a clip too
             std::cerr << "softbody: the simulation diverged before t = " << t << " s: " << world.divergence()
-                      << (writer ? " (" + video_path + " has the " + std::to_string(writer->frames()) +
+                      << (writer ? " (" + job.video_path + " has the " + std::to_string(writer->frames()) +
                                        (writer->frames() == 1 ? " frame" : " frames") + " before it)"
                                  : "")
                       << "\n";
@@ -419,19 +476,37 @@ int render_command(int argc, char** argv) {
         };
         std::cout << line.dump() << std::endl;
     }
-    if (writer) {
-        // One line for the whole video: where it is (or where its frames are), and its shape.
-        writer->finish();
-        nlohmann::ordered_json line = {
-            {"video", writer->has_ffmpeg() ? nlohmann::ordered_json(video_path) : nlohmann::ordered_json(nullptr)},
-            {"frames", writer->frames()}, {"fps", fps}, {"seconds", double(writer->frames()) / fps},
-            {"width", width}, {"height", height}, {"tick", world.ticks()}, {"state_hash", hex(world.state_hash())},
-            {"memory_kib", resident_memory().now_kib},
-        };
-        if (!writer->has_ffmpeg()) line["frames_folder"] = writer->frames_folder();
-        std::cout << line.dump() << std::endl;
-    }
+    if (writer) print_video_line(job, *writer, world);
     return kOk;
+}
+
+int render_bench(int argc, char** argv);
+
+}  // namespace
+
+// The stages in the order a user's mistakes are cheapest to find: the options, the scene, the
+// file names, the output, then GL and the frames.
+int render_command(int argc, char** argv) {
+    for (int i = 2; i < argc; ++i) {
+        if (std::string_view(argv[i]) == "--bench") return render_bench(argc, argv);
+    }
+    RenderJob job;
+    if (!read_options(argc, argv, job)) return kOk;
+
+    const Scene resolved = job.scene.resolve();
+    World world(resolved, WorldOptions{job.threads, false});
+    for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
+    check_file_names(job);
+    const std::unique_ptr<VideoWriter> writer = open_output(job);
+
+    OffscreenContext context(job.width, job.height);
+    render::Renderer renderer(context.loader());
+    if (job.width > renderer.info().max_size || job.height > renderer.info().max_size) {
+        throw InputError("--size " + std::to_string(job.width) + "x" + std::to_string(job.height) + ": this OpenGL (" +
+                         renderer.info().renderer + ") draws at most " + std::to_string(renderer.info().max_size) +
+                         " pixels a side");
+    }
+    return render_frames(job, resolved.settings, world, renderer, writer.get());
 }
 
 namespace {

@@ -1,5 +1,7 @@
 // Internal to the physics library: what the narrow phase (collide.cpp), the point and segment
-// queries (shape_queries.cpp) and the time of impact (time_of_impact.cpp) share.
+// queries (shape_queries.cpp) and the time of impact (time_of_impact.cpp) share. The queries
+// on triangle surfaces (nearest point, inside or out, a hull's points against them) are
+// triangle_queries.h's.
 #pragma once
 
 #include <cstdint>

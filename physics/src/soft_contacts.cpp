@@ -1,6 +1,7 @@
 #include "soft_contacts.h"
 
 #include "ground_contact.h"
+#include "triangle_queries.h"
 
 #include <algorithm>
 #include <array>
@@ -23,70 +24,6 @@ constexpr float kSettled = 1e-5f;      // m/s: a pass that moves no velocity mor
 // the soft body's particles rest on the same shape at no gap (contact_solver.h), and the
 // triangles between them should not stand off it by more than that.
 constexpr double kRigidThickness = 0.001;
-
-// The point of triangle (a, b, c) nearest p, as barycentric weights (each >= 0, sum 1): by the
-// region p falls in (a corner, an edge, or the face), each tested with dot products only.
-std::array<float, 3> nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0.0f && d2 <= 0.0f) return {1.0f, 0.0f, 0.0f};
-    const Vec3 bp = p - b;
-    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0.0f && d4 <= d3) return {0.0f, 1.0f, 0.0f};
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
-        const float t = d1 / (d1 - d3);
-        return {1.0f - t, t, 0.0f};
-    }
-    const Vec3 cp = p - c;
-    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0.0f && d5 <= d6) return {0.0f, 0.0f, 1.0f};
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
-        const float t = d2 / (d2 - d6);
-        return {1.0f - t, 0.0f, t};
-    }
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
-        const float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return {0.0f, 1.0f - t, t};
-    }
-    const float sum = va + vb + vc;
-    if (!(sum > 0.0f)) return {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};  // a degenerate triangle: its centre
-    const float v = vb / sum, w = vc / sum;
-    return {1.0f - v - w, v, w};
-}
-
-// A hull's points that meet soft triangles: its vertices, then points along its edges every
-// kEdgeSpacing at most (a box's edge under a soft face that overhangs it holds the face where
-// no vertex is). Feature k < vertices is vertex k; past them, edge samples in the hull's order.
-constexpr double kEdgeSpacing = 0.1;  // m
-constexpr std::uint32_t kMostEdgeSamples = 32;
-
-std::uint32_t edge_samples(const ConvexHull& hull, const std::array<std::uint32_t, 2>& edge) {
-    const double l = length(hull.vertices[edge[1]] - hull.vertices[edge[0]]);
-    return std::min(kMostEdgeSamples, std::uint32_t(std::ceil(l / kEdgeSpacing)) - 1);
-}
-
-std::uint32_t hull_feature_count(const ConvexHull& hull) {
-    std::uint32_t count = std::uint32_t(hull.vertices.size());
-    for (const auto& e : hull.edges) count += edge_samples(hull, e);
-    return count;
-}
-
-Vec3d hull_feature(const ConvexHull& hull, std::uint32_t feature) {
-    if (feature < hull.vertices.size()) return hull.vertices[feature];
-    feature -= std::uint32_t(hull.vertices.size());
-    for (const auto& e : hull.edges) {
-        const std::uint32_t n = edge_samples(hull, e);
-        if (feature < n) {
-            const double t = double(feature + 1) / double(n + 1);
-            return hull.vertices[e[0]] * (1.0 - t) + hull.vertices[e[1]] * t;
-        }
-        feature -= n;
-    }
-    return {};
-}
 
 Box3f box_of(const Vec3& p, float grow) { return {p - Vec3{grow, grow, grow}, p + Vec3{grow, grow, grow}}; }
 
@@ -118,62 +55,6 @@ float cloud_radius(const Vec3Array& x) {
     return std::isfinite(r) && r > 0.0f ? r : kSurfaceThickness;
 }
 
-float distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const auto w = nearest_on_triangle(p, a, b, c);
-    return length(p - (a * w[0] + b * w[1] + c * w[2]));
-}
-
-// Whether the surface is closed, which way its winding faces, and its neighbours: each
-// triangle's across each of its edges, each particle's fan of triangles. Closed: every edge is
-// shared by exactly two triangles that run along it in opposite directions (wound alike).
-template <class Surface>
-void close_surface(Surface& s, const SoftBody& body) {
-    const std::size_t count = s.triangles.size() / 3;
-    s.closed = false;
-    s.across.assign(s.triangles.size(), 0);
-    s.fan_begin.assign(body.particle_count() + 1, 0);
-    s.fan.clear();
-    if (count == 0) return;
-    struct Edge {
-        std::uint32_t lo, hi, at;  // at: 3 tri + k, the edge from corner k to k + 1
-        bool forward;              // lo to hi
-    };
-    std::vector<Edge> edges;
-    edges.reserve(s.triangles.size());
-    for (std::uint32_t at = 0; at < s.triangles.size(); ++at) {
-        const std::uint32_t u = s.triangles[at], v = s.triangles[at - at % 3 + (at % 3 + 1) % 3];
-        edges.push_back({std::min(u, v), std::max(u, v), at, u < v});
-    }
-    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
-        return x.lo < y.lo || (x.lo == y.lo && (x.hi < y.hi || (x.hi == y.hi && x.at < y.at)));
-    });
-    bool closed = edges.size() % 2 == 0;
-    for (std::size_t k = 0; closed && k < edges.size(); k += 2) {
-        const Edge &e = edges[k], &f = edges[k + 1];
-        closed = e.lo == f.lo && e.hi == f.hi && e.forward != f.forward &&
-                 (k + 2 == edges.size() || edges[k + 2].lo != e.lo || edges[k + 2].hi != e.hi);
-        if (closed) {
-            s.across[e.at] = f.at / 3;
-            s.across[f.at] = e.at / 3;
-        }
-    }
-    if (!closed) return;
-    s.closed = true;
-    // The volume at rest, sum x0 . (x1 x x2) / 6: positive when the winding faces out.
-    double volume = 0.0;
-    for (std::size_t t = 0; t < count; ++t) {
-        const Vec3d x0(body.rest[s.triangles[3 * t]]), x1(body.rest[s.triangles[3 * t + 1]]), x2(body.rest[s.triangles[3 * t + 2]]);
-        volume += dot(x0, cross(x1, x2));
-    }
-    s.rest_volume = volume;
-    s.orient = volume < 0.0 ? -1.0f : 1.0f;
-    for (const std::uint32_t v : s.triangles) ++s.fan_begin[v + 1];
-    for (std::size_t i = 0; i < body.particle_count(); ++i) s.fan_begin[i + 1] += s.fan_begin[i];
-    s.fan.assign(s.triangles.size(), 0);
-    std::vector<std::uint32_t> filled(s.fan_begin.begin(), s.fan_begin.end() - 1);
-    for (std::uint32_t at = 0; at < s.triangles.size(); ++at) s.fan[filled[s.triangles[at]]++] = at / 3;
-}
-
 }  // namespace
 
 void SoftContacts::build(const std::vector<SoftBody>& bodies) {
@@ -198,7 +79,7 @@ void SoftContacts::build(const std::vector<SoftBody>& bodies) {
         }
         s.radius = s.triangles.empty() ? cloud_radius(body.rest) : 0.0f;
         slot_[b].assign(body.particle_count(), kNoSlot);
-        close_surface(s, body);
+        close_surface(s, body.rest, body.particle_count());
     }
 }
 
@@ -272,66 +153,6 @@ void SoftContacts::find_particle(const std::vector<SoftBody>& bodies, std::size_
     }
 }
 
-Vec3 SoftContacts::outward(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w) const {
-    const auto normal = [&](std::uint32_t t) {
-        const std::uint32_t* v = &s.triangles[3 * t];
-        const Vec3 n = cross(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]);
-        const float l = length(n);
-        return l > 0.0f ? n / l : Vec3{};
-    };
-    const int zeros = (w[0] == 0.0f) + (w[1] == 0.0f) + (w[2] == 0.0f);
-    Vec3 n;
-    if (zeros == 0) {
-        n = normal(tri);
-    } else if (zeros == 1) {
-        // On the edge opposite the corner of weight 0: the edge from corner k + 1 to k + 2.
-        const std::uint32_t k = w[0] == 0.0f ? 0 : w[1] == 0.0f ? 1 : 2;
-        n = normal(tri) + normal(s.across[3 * tri + (k + 1) % 3]);
-    } else {
-        // At a corner: every triangle around it, by its angle there (a corner's normal that
-        // says inside from outside whatever the fan's triangles are like).
-        const std::uint32_t corner = s.triangles[3 * tri + (w[0] != 0.0f ? 0 : w[1] != 0.0f ? 1 : 2)];
-        for (std::uint32_t f = s.fan_begin[corner]; f < s.fan_begin[corner + 1]; ++f) {
-            const std::uint32_t t = s.fan[f];
-            const std::uint32_t* v = &s.triangles[3 * t];
-            const std::uint32_t k = v[0] == corner ? 0 : v[1] == corner ? 1 : 2;
-            const Vec3 e1 = x[v[(k + 1) % 3]] - x[corner], e2 = x[v[(k + 2) % 3]] - x[corner];
-            const float l1 = length(e1), l2 = length(e2);
-            if (!(l1 > 0.0f && l2 > 0.0f)) continue;
-            const float angle = std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0f, 1.0f));
-            n += normal(t) * angle;
-        }
-    }
-    return n * s.orient;
-}
-
-bool SoftContacts::inside(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w, const Vec3& p,
-                          const Vec3& away) const {
-    // At the nearest point of a closed surface, the way to a point outside is within the
-    // surface's outward cone there: over a face along its normal, beside an edge between its
-    // two faces' normals, at a corner among its faces'. So the sign of away . outward says
-    // which side it is on, where the cone is clear: not a crease folded nearly flat back on
-    // itself (two faces' normals nearly opposite, their sum short), nor a way almost across
-    // the outward direction. There, and only there, the winding number says: the solid angle
-    // the whole surface spans seen from p over 4 pi, 1 inside and 0 outside, whatever its
-    // folds.
-    const Vec3 out = outward(s, x, tri, w);
-    const int zeros = (w[0] == 0.0f) + (w[1] == 0.0f) + (w[2] == 0.0f);
-    const float size = length(out), dist = length(away);
-    const float clear = zeros == 0 ? 0.5f : zeros == 1 ? 1.0f : 1.5f;  // of a flat sheet's 1, 2 and 2 pi
-    const float along = dot(away, out);
-    if (size >= clear && std::abs(along) >= 0.2f * size * dist) return along < 0.0f;
-    double solid = 0.0;
-    for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
-        const Vec3 a = x[s.triangles[t]] - p, b = x[s.triangles[t + 1]] - p, c = x[s.triangles[t + 2]] - p;
-        const float la = length(a), lb = length(b), lc = length(c);
-        // Its solid angle, 2 atan2(a . (b x c), |a||b||c| + (a . b)|c| + (b . c)|a| + (c . a)|b|).
-        solid += 2.0 * std::atan2(double(dot(a, cross(b, c))),
-                                  double(la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb));
-    }
-    return solid * double(s.orient) > 2.0 * 3.14159265358979323846;
-}
-
 // A particle with no triangle of a closed body within reach may still be inside it (pushed in
 // deeper than a tick's reach, or placed there): its nearest point on the whole surface, found
 // by boxes twice as large each time until one holds a triangle, then every triangle nearer than
@@ -373,39 +194,21 @@ void SoftContacts::find_inside(const std::vector<SoftBody>& bodies, std::size_t 
     out.push_back(pair);
 }
 
-bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-                        const WorldSettings& world, double dt, ThreadPool& pool) {
-    rigid_pairs_.clear();
-    if (surfaces_.size() != bodies.size()) build(bodies);
-    bool wanted = false, any_faces = false;
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-        wanted = wanted || bodies[b].def.self_collision;
-        any_faces = any_faces || !surfaces_[b].triangles.empty();
-    }
-    const bool rigid_near = any_faces && !rigid.empty();
-    if (bodies.size() < 2 && !wanted && !rigid_near) {
-        pairs_.clear();
-        spans_.clear();
-        reusable_ = false;
-        return false;
-    }
-    const float h = float(dt), g = length(world.gravity);
-    // Which way each closed surface faces this tick (Surface::orient): its volume now against
-    // its volume at rest.
+// Which way each closed surface faces this tick (Surface::orient): its volume now against its
+// volume at rest.
+void SoftContacts::orient_surfaces(const std::vector<SoftBody>& bodies) {
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         Surface& s = surfaces_[b];
         if (!s.closed) continue;
-        double volume = 0.0;
-        for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
-            const Vec3d x0(bodies[b].x[s.triangles[t]]), x1(bodies[b].x[s.triangles[t + 1]]), x2(bodies[b].x[s.triangles[t + 2]]);
-            volume += dot(x0, cross(x1, x2));
-        }
-        const double ratio = volume / s.rest_volume;
+        const double ratio = six_volume(s.triangles, bodies[b].x) / s.rest_volume;
         s.orient = std::abs(ratio) <= 0.25 ? 0.0f : float(ratio > 0.0 ? 1.0 : -1.0) * (s.rest_volume < 0.0 ? -1.0f : 1.0f);
     }
-    // How far each particle can go in the tick (as particle_contacts.h reckons it): at its
-    // speed, with gravity, twice what its last tick's forces added to the way it went, and a
-    // millimetre. Each body's box with it.
+}
+
+// How far each particle can go in the tick (as particle_contacts.h reckons it): at its speed,
+// with gravity, twice what its last tick's forces added to the way it went, and a millimetre.
+// Into reach_; returned, each body's box with it.
+std::vector<Box3f> SoftContacts::reach_boxes(const std::vector<SoftBody>& bodies, float h, float g) {
     std::vector<Box3f> whole(bodies.size());
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         const SoftBody& body = bodies[b];
@@ -420,8 +223,12 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             else whole[b].grow(box);
         }
     }
-    // Each rigid body's box where the tick begins, grown by how far it can move in it
-    // (speculative_margin, ground_contact.h).
+    return whole;
+}
+
+// Each rigid body's box where the tick begins, grown by how far it can move in it
+// (speculative_margin, ground_contact.h): into rigid_box_.
+void SoftContacts::grow_rigid_boxes(std::span<const RigidBody> rigid, std::span<const double> state, double dt, float g) {
     rigid_box_.resize(rigid.size());
     for (std::size_t r = 0; r < rigid.size(); ++r) {
         const RigidMotion m = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
@@ -429,30 +236,24 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         const float grow = float(rigid[r].bounding_radius + margin + kRigidThickness);
         rigid_box_[r] = box_of(to_float(m.x), grow);
     }
-    const auto meets_rigid = [&](std::size_t r, std::size_t b) {
-        return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
-    };
-    // Which pairs of bodies can meet at all; each body's tree refit only when some can, each
-    // body's on a thread of the pool (a tree is its body's alone).
-    const auto meets = [&](std::size_t a, std::size_t b) {
-        if (a == b) return bodies[a].def.self_collision && !surfaces_[a].triangles.empty();
-        return whole[a].overlaps(whole[b]);
-    };
-    // The last tick's pairs again, when no particle can reach anything this tick that the
-    // search which found them did not cover: that search reached kReuseMargin farther than
-    // its tick needed, from where the particles were then, and each particle's reach now plus
-    // the farthest any particle has gone since is still within it (its box, the nearest-point
-    // test and the choice among a particle's triangles all cover this tick's then). A body
-    // resting on another moves micrometres a tick: its pairs are found once in many ticks.
-    // Not with rigid bodies within reach (their points are found every tick, in the trees).
-    std::vector<std::uint8_t> meeting(bodies.size() * bodies.size());
-    for (std::size_t a = 0; a < bodies.size(); ++a) {
-        for (std::size_t b = 0; b < bodies.size(); ++b) meeting[a * bodies.size() + b] = meets(a, b) ? 1 : 0;
-    }
-    bool rigid_meets = false;
-    for (std::size_t r = 0; r < rigid.size() && !rigid_meets; ++r) {
-        for (std::size_t b = 0; b < bodies.size() && !rigid_meets; ++b) rigid_meets = meets_rigid(r, b);
-    }
+}
+
+// Whether the particles of body a can reach body b in the tick, by their boxes `whole` (a == b:
+// a body against itself, when it asks for that and has faces).
+bool SoftContacts::meets(const std::vector<SoftBody>& bodies, const std::vector<Box3f>& whole, std::size_t a,
+                         std::size_t b) const {
+    if (a == b) return bodies[a].def.self_collision && !surfaces_[a].triangles.empty();
+    return whole[a].overlaps(whole[b]);
+}
+
+// Whether rigid body r can reach body b's triangles in the tick.
+bool SoftContacts::meets_rigid(const std::vector<Box3f>& whole, std::size_t r, std::size_t b) const {
+    return !surfaces_[b].triangles.empty() && rigid_box_[r].overlaps(whole[b]);
+}
+
+// Whether the last search's pairs serve this tick too (find says when).
+bool SoftContacts::can_reuse(const std::vector<SoftBody>& bodies, const std::vector<std::uint8_t>& meeting,
+                             bool rigid_meets) const {
     bool reuse = reusable_ && !rigid_meets && meeting == meeting_found_ && x_found_.size() == bodies.size();
     for (std::size_t b = 0; b < bodies.size() && reuse; ++b) reuse = x_found_[b].size() == bodies[b].particle_count();
     float gone = 0.0f;  // squared
@@ -466,24 +267,18 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     for (std::size_t b = 0; b < bodies.size() && reuse; ++b) {
         for (std::size_t i = 0; i < bodies[b].particle_count() && reuse; ++i) reuse = reach_[b][i] + gone <= reach_found_[b][i];
     }
-    if (reuse) {
-        choice_.assign(choice_.size(), {0, 0});
-        moving_.assign(moving_.size(), 0);
-        fresh_ = true;
-        return !pairs_.empty();
-    }
-    // Found anew: kReuseMargin farther than this tick needs.
-    pairs_.clear();
-    spans_.clear();
-    for (std::size_t b = 0; b < bodies.size(); ++b) {
-        for (float& r : reach_[b]) r += kReuseMargin;
-        whole[b] = {whole[b].lo - Vec3{kReuseMargin, kReuseMargin, kReuseMargin}, whole[b].hi + Vec3{kReuseMargin, kReuseMargin, kReuseMargin}};
-    }
+    return reuse;
+}
+
+// Each body's tree refit where some body or rigid body can meet it, each body's on a thread of
+// the pool (a tree is its body's alone).
+void SoftContacts::refit_trees(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                               const std::vector<Box3f>& whole, ThreadPool& pool) {
     std::vector<std::uint32_t> refit;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         bool needed = false;
-        for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(a, b);
-        for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(r, b);
+        for (std::size_t a = 0; a < bodies.size() && !needed; ++a) needed = meets(bodies, whole, a, b);
+        for (std::size_t r = 0; r < rigid.size() && !needed; ++r) needed = meets_rigid(whole, r, b);
         if (needed) refit.push_back(std::uint32_t(b));
     }
     const auto fit = [&](std::size_t k) {
@@ -510,12 +305,15 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
     };
     if (refit.size() == 1) fit(0);
     else if (refit.size() > 1) pool.run(refit.size(), fit);
-    // Each particle's pairs with a body it can meet, its particles in chunks spread over the
-    // threads, each chunk's pairs in a list of its own, joined in particle order afterwards: the
-    // pairs (and so every contact and impulse) come in the same order at any thread count.
+}
+
+// Each particle's pairs with a body it can meet, its particles in chunks spread over the
+// threads, each chunk's pairs in a list of its own, joined in particle order afterwards: the
+// pairs (and so every contact and impulse) come in the same order at any thread count.
+void SoftContacts::find_soft_pairs(const std::vector<SoftBody>& bodies, const std::vector<Box3f>& whole, ThreadPool& pool) {
     for (std::size_t a = 0; a < bodies.size(); ++a) {
         for (std::size_t b = 0; b < bodies.size(); ++b) {
-            if (!meets(a, b)) continue;
+            if (!meets(bodies, whole, a, b)) continue;
             // Two point clouds meet once, ball against ball; a body with faces meets a point
             // cloud particle against particle as well as the cloud's particles against its faces.
             if (surfaces_[b].triangles.empty() && surfaces_[a].triangles.empty() && b < a) continue;
@@ -532,9 +330,12 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             for (std::size_t k = 0; k < chunks; ++k) pairs_.insert(pairs_.end(), chunk_pairs_[k].begin(), chunk_pairs_[k].end());
         }
     }
-    // begin_substep's groups, one particle's pairs with one body each (its contacts are chosen
-    // among them), and its spans, whole groups of about kChunk pairs. Each group's choice is
-    // made anew in the tick's first substep.
+}
+
+// begin_substep's groups, one particle's pairs with one body each (its contacts are chosen
+// among them), and its spans, whole groups of about kChunk pairs. Each group's choice is made
+// anew in the tick's first substep.
+void SoftContacts::make_groups(const std::vector<SoftBody>& bodies) {
     groups_.clear();
     spans_.assign(1, 0);
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
@@ -577,10 +378,14 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         }
         corners_begin_.push_back(corners_.size());
     }
-    // Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its
-    // vertices and points along its edges, hull_feature), against the triangles whose boxes
-    // its box meets (a query of the soft body's tree per point), kept when within reach by the
-    // nearest point. One point's triangles come together (begin_substep keeps its nearest).
+}
+
+// Rigid shapes against the triangles: a sphere's centre, or each point of a hull (its vertices
+// and points along its edges, hull_feature), against the triangles whose boxes its box meets
+// (a query of the soft body's tree per point), kept when within reach by the nearest point.
+// One point's triangles come together (begin_substep keeps its nearest).
+void SoftContacts::find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                              std::span<const double> state, const std::vector<Box3f>& whole, double dt, float g) {
     if (rigid_features_.size() != rigid.size()) rigid_features_.assign(rigid.size(), {});
     for (std::size_t r = 0; r < rigid.size(); ++r) {
         const RigidBody& body = rigid[r];
@@ -588,7 +393,7 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         const double margin = body.fixed ? 0.0 : speculative_margin(body, m, dt, double(g));
         std::vector<Vec3d>& features = rigid_features_[r];
         for (std::size_t b = 0; b < bodies.size(); ++b) {
-            if (!meets_rigid(r, b)) continue;
+            if (!meets_rigid(whole, r, b)) continue;
             if (features.empty()) {  // made once: a rigid body's shape never changes
                 if (body.hull) {
                     const std::uint32_t count = hull_feature_count(*body.hull);
@@ -621,7 +426,13 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
             }
         }
     }
-    // (Nor with a particle inside a body: its nearest triangle is found again every tick.)
+}
+
+// What the next tick needs to know of this search: whether its pairs can serve again, which
+// bodies met, each particle's reach and position.
+void SoftContacts::remember_search(const std::vector<SoftBody>& bodies, std::vector<std::uint8_t> meeting, bool rigid_meets) {
+    // Not when rigid bodies are within reach (their points are found every tick), nor with a
+    // particle inside a body (its nearest triangle is found again every tick).
     reusable_ = !rigid_meets && rigid_pairs_.empty() &&
                 std::none_of(pairs_.begin(), pairs_.end(), [](const Pair& pair) { return pair.inside; });
     meeting_found_ = std::move(meeting);
@@ -631,6 +442,61 @@ bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const Rig
         x_found_[b].resize(bodies[b].particle_count());
         for (std::size_t i = 0; i < bodies[b].particle_count(); ++i) x_found_[b][i] = bodies[b].x[i];
     }
+}
+
+bool SoftContacts::find(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                        const WorldSettings& world, double dt, ThreadPool& pool) {
+    rigid_pairs_.clear();
+    if (surfaces_.size() != bodies.size()) build(bodies);
+    bool wanted = false, any_faces = false;
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        wanted = wanted || bodies[b].def.self_collision;
+        any_faces = any_faces || !surfaces_[b].triangles.empty();
+    }
+    const bool rigid_near = any_faces && !rigid.empty();
+    if (bodies.size() < 2 && !wanted && !rigid_near) {
+        pairs_.clear();
+        spans_.clear();
+        reusable_ = false;
+        return false;
+    }
+    const float h = float(dt), g = length(world.gravity);
+    orient_surfaces(bodies);
+    std::vector<Box3f> whole = reach_boxes(bodies, h, g);
+    grow_rigid_boxes(rigid, state, dt, g);
+    // The last tick's pairs again, when no particle can reach anything this tick that the
+    // search which found them did not cover: that search reached kReuseMargin farther than
+    // its tick needed, from where the particles were then, and each particle's reach now plus
+    // the farthest any particle has gone since is still within it (its box, the nearest-point
+    // test and the choice among a particle's triangles all cover this tick's then). A body
+    // resting on another moves micrometres a tick: its pairs are found once in many ticks.
+    // Not with rigid bodies within reach (their points are found every tick, in the trees).
+    std::vector<std::uint8_t> meeting(bodies.size() * bodies.size());
+    for (std::size_t a = 0; a < bodies.size(); ++a) {
+        for (std::size_t b = 0; b < bodies.size(); ++b) meeting[a * bodies.size() + b] = meets(bodies, whole, a, b) ? 1 : 0;
+    }
+    bool rigid_meets = false;
+    for (std::size_t r = 0; r < rigid.size() && !rigid_meets; ++r) {
+        for (std::size_t b = 0; b < bodies.size() && !rigid_meets; ++b) rigid_meets = meets_rigid(whole, r, b);
+    }
+    if (can_reuse(bodies, meeting, rigid_meets)) {
+        choice_.assign(choice_.size(), {0, 0});
+        moving_.assign(moving_.size(), 0);
+        fresh_ = true;
+        return !pairs_.empty();
+    }
+    // Found anew: kReuseMargin farther than this tick needs.
+    pairs_.clear();
+    spans_.clear();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+        for (float& r : reach_[b]) r += kReuseMargin;
+        whole[b] = {whole[b].lo - Vec3{kReuseMargin, kReuseMargin, kReuseMargin}, whole[b].hi + Vec3{kReuseMargin, kReuseMargin, kReuseMargin}};
+    }
+    refit_trees(bodies, rigid, whole, pool);
+    find_soft_pairs(bodies, whole, pool);
+    make_groups(bodies);
+    find_rigid(bodies, rigid, state, whole, dt, g);
+    remember_search(bodies, std::move(meeting), rigid_meets);
     return !pairs_.empty() || !rigid_pairs_.empty();
 }
 
@@ -708,12 +574,11 @@ void SoftContacts::make_contact(const std::vector<SoftBody>& bodies, const Pair&
     c.bounce = -dot(v_rel, n);
 }
 
-void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
-                                 std::span<const double> state, ThreadPool& pool) {
-    active_.clear();
+// Rigid points against triangles: the nearest triangle of each point (and the nearest across
+// it), where the substep begins.
+void SoftContacts::begin_rigid_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                       std::span<const double> state) {
     rigid_active_.clear();
-    // Rigid points against triangles: the nearest triangle of each point (and the nearest
-    // across it), where the substep begins.
     std::size_t rigid_group = 0;
     for (std::size_t k = 0; k < rigid_pairs_.size(); ++k) {
         const RigidPair& pair = rigid_pairs_[k];
@@ -766,6 +631,71 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
             rigid_active_[rigid_group + 1] = c;
         }
     }
+}
+
+// One span of find's groups (whole groups of one particle's pairs with one body): each group's
+// contacts into the span's own list, the group's choice kept or made anew (begin_substep).
+void SoftContacts::begin_span(const std::vector<SoftBody>& bodies, std::size_t span) {
+    std::vector<Active>& out = chunk_active_[span];
+    out.clear();
+    Near near[2], next;
+    for (std::size_t g = spans_[span]; g < spans_[span + 1]; ++g) {
+        const std::size_t begin = groups_[g], end = groups_[g + 1];
+        const Pair& first = pairs_[begin];
+        const bool faces = !surfaces_[first.b].triangles.empty();
+        const bool closed = surfaces_[first.b].closed && surfaces_[first.b].orient != 0.0f && first.a != first.b;
+        if (faces && !fresh_ && !moving_[g]) {
+            // D, against kKeepChoice d.
+            const std::vector<float>& moved_b = moved_[first.b];
+            float corner = 0.0f;
+            for (std::size_t k = corners_begin_[g]; k < corners_begin_[g + 1]; ++k) corner = std::max(corner, moved_b[corners_[k]]);
+            const float moved = std::sqrt(moved_[first.a][first.p]) + std::sqrt(corner);
+            if (moved <= kKeepChoice * first.distance) {
+                for (const std::uint32_t k : choice_[g]) {
+                    if (k && nearest(bodies, pairs_[k - 1], next)) make_contact(bodies, pairs_[k - 1], next, out.emplace_back());
+                }
+                continue;
+            }
+            moving_[g] = 1;
+        }
+        // The group's choice: the nearest (same), and the nearest across it (across).
+        std::uint32_t same = 0, across = 0;
+        for (std::size_t k = begin; k < end; ++k) {
+            const Pair& pair = pairs_[k];
+            if (!nearest(bodies, pair, next)) continue;
+            if (!faces) {  // a point cloud's balls: every one it touches
+                make_contact(bodies, pair, next, out.emplace_back());
+                continue;
+            }
+            if (!same) {
+                same = std::uint32_t(k + 1);
+                near[0] = next;
+            } else if (closed) {
+                // Signed: the nearest point alone says inside or out (make_contact).
+                if (next.dist < near[0].dist) {
+                    same = std::uint32_t(k + 1);
+                    near[0] = next;
+                }
+            } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
+                if (next.dist < near[0].dist) {
+                    same = std::uint32_t(k + 1);
+                    near[0] = next;
+                }
+            } else if (!across || next.dist < near[1].dist) {
+                across = std::uint32_t(k + 1);
+                near[1] = next;
+            }
+        }
+        if (same) make_contact(bodies, pairs_[same - 1], near[0], out.emplace_back());
+        if (across) make_contact(bodies, pairs_[across - 1], near[1], out.emplace_back());
+        choice_[g] = {same, across};
+    }
+}
+
+void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                 std::span<const double> state, ThreadPool& pool) {
+    active_.clear();
+    begin_rigid_substep(bodies, rigid, state);
     // One contact per particle and surface: its nearest triangle (the pairs of one particle and
     // body come one after another), and the nearest on the other side of the particle if there
     // is one (a particle between two layers of a folded sheet). The other triangles within
@@ -798,176 +728,137 @@ void SoftContacts::begin_substep(const std::vector<SoftBody>& bodies, std::span<
     }
     const std::size_t spans = spans_.empty() ? 0 : spans_.size() - 1;
     if (chunk_active_.size() < spans) chunk_active_.resize(spans);
-    const auto make = [&](std::size_t span) {
-        std::vector<Active>& out = chunk_active_[span];
-        out.clear();
-        Near near[2], next;
-        for (std::size_t g = spans_[span]; g < spans_[span + 1]; ++g) {
-            const std::size_t begin = groups_[g], end = groups_[g + 1];
-            const Pair& first = pairs_[begin];
-            const bool faces = !surfaces_[first.b].triangles.empty();
-            const bool closed = surfaces_[first.b].closed && surfaces_[first.b].orient != 0.0f && first.a != first.b;
-            if (faces && !fresh_ && !moving_[g]) {
-                // D, against kKeepChoice d.
-                const std::vector<float>& moved_b = moved_[first.b];
-                float corner = 0.0f;
-                for (std::size_t k = corners_begin_[g]; k < corners_begin_[g + 1]; ++k) corner = std::max(corner, moved_b[corners_[k]]);
-                const float moved = std::sqrt(moved_[first.a][first.p]) + std::sqrt(corner);
-                if (moved <= kKeepChoice * first.distance) {
-                    for (const std::uint32_t k : choice_[g]) {
-                        if (k && nearest(bodies, pairs_[k - 1], next)) make_contact(bodies, pairs_[k - 1], next, out.emplace_back());
-                    }
-                    continue;
-                }
-                moving_[g] = 1;
-            }
-            // The group's choice: the nearest (same), and the nearest across it (across).
-            std::uint32_t same = 0, across = 0;
-            for (std::size_t k = begin; k < end; ++k) {
-                const Pair& pair = pairs_[k];
-                if (!nearest(bodies, pair, next)) continue;
-                if (!faces) {  // a point cloud's balls: every one it touches
-                    make_contact(bodies, pair, next, out.emplace_back());
-                    continue;
-                }
-                if (!same) {
-                    same = std::uint32_t(k + 1);
-                    near[0] = next;
-                } else if (closed) {
-                    // Signed: the nearest point alone says inside or out (make_contact).
-                    if (next.dist < near[0].dist) {
-                        same = std::uint32_t(k + 1);
-                        near[0] = next;
-                    }
-                } else if (dot(Vec3d(next.way), Vec3d(near[0].way)) >= 0.0) {
-                    if (next.dist < near[0].dist) {
-                        same = std::uint32_t(k + 1);
-                        near[0] = next;
-                    }
-                } else if (!across || next.dist < near[1].dist) {
-                    across = std::uint32_t(k + 1);
-                    near[1] = next;
-                }
-            }
-            if (same) make_contact(bodies, pairs_[same - 1], near[0], out.emplace_back());
-            if (across) make_contact(bodies, pairs_[across - 1], near[1], out.emplace_back());
-            choice_[g] = {same, across};
-        }
-    };
+    const auto make = [&](std::size_t span) { begin_span(bodies, span); };
     if (spans == 1) make(0);
     else if (spans > 1) pool.run(spans, make);
     fresh_ = false;
     for (std::size_t k = 0; k < spans; ++k) active_.insert(active_.end(), chunk_active_[k].begin(), chunk_active_[k].end());
 }
 
-void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
-                         const WorldSettings& world, float h) {
-    touching_.clear();
-    if (active_.empty() && rigid_active_.empty()) return;
-    const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
-    // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
-    const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
-    // The passes work on a compact copy of the velocities of the particles the contacts touch
-    // (gathered once, scattered back at the end): the same sums in the same order as on the
-    // bodies' own arrays, without their three separate streams per particle.
-    const auto slot_of = [&](std::uint32_t body, std::uint32_t i) {
-        std::uint32_t& slot = slot_[body][i];
-        if (slot == kNoSlot) {
-            slot = std::uint32_t(local_v_.size());
-            local_v_.push_back(bodies[body].v[i]);
-            local_dv_.push_back({});
-            local_im_.push_back(bodies[body].inv_mass[i]);
-            local_of_.push_back({body, i});
-            local_pushed_.push_back(0);
-        }
-        return slot;
-    };
+// solve's compact copy of the velocities of the particles the contacts touch (gathered once,
+// scattered back at the end): the same sums in the same order as on the bodies' own arrays,
+// without their three separate streams per particle. A particle's slot, made on first use.
+std::uint32_t SoftContacts::slot_of(const std::vector<SoftBody>& bodies, std::uint32_t body, std::uint32_t i) {
+    std::uint32_t& slot = slot_[body][i];
+    if (slot == kNoSlot) {
+        slot = std::uint32_t(local_v_.size());
+        local_v_.push_back(bodies[body].v[i]);
+        local_dv_.push_back({});
+        local_im_.push_back(bodies[body].inv_mass[i]);
+        local_of_.push_back({body, i});
+        local_pushed_.push_back(0);
+    }
+    return slot;
+}
+
+void SoftContacts::gather(const std::vector<SoftBody>& bodies) {
     for (Active& c : active_) {
-        c.slot[0] = slot_of(c.c.body_a, c.c.particle);
-        for (int k = 0; k < 3; ++k) c.slot[k + 1] = slot_of(c.c.body_b, c.c.other[k]);
+        c.slot[0] = slot_of(bodies, c.c.body_a, c.c.particle);
+        for (int k = 0; k < 3; ++k) c.slot[k + 1] = slot_of(bodies, c.c.body_b, c.c.other[k]);
     }
     for (RigidActive& c : rigid_active_) {
-        for (int j = 0; j < 3; ++j) c.slot[j] = slot_of(c.soft, c.other[j]);
+        for (int j = 0; j < 3; ++j) c.slot[j] = slot_of(bodies, c.soft, c.other[j]);
     }
-    const auto relative = [&](const Active& c) {
-        Vec3 v = local_v_[c.slot[0]];
-        for (int k = 0; k < 3; ++k) v -= local_v_[c.slot[k + 1]] * c.c.weight[k];
-        return v;
-    };
-    const auto position = [&](const Active& c) {
-        const SoftBody& A = bodies[c.c.body_a];
-        const SoftBody& B = bodies[c.c.body_b];
-        Vec3 d = A.x[c.c.particle];
-        for (int k = 0; k < 3; ++k) d -= B.x[c.c.other[k]] * c.c.weight[k];
-        return d;
-    };
-    const auto push = [&](std::uint32_t slot, const Vec3& impulse) {
-        const float im = local_im_[slot];
-        if (im == 0.0f) return;
-        const Vec3 dv = impulse * im;
-        local_v_[slot] += dv;
-        local_dv_[slot] += dv;
-        local_pushed_[slot] = 1;
-    };
-    const auto apply = [&](const Active& c, const Vec3& J) {
-        push(c.slot[0], J);
-        for (int k = 0; k < 3; ++k) {
-            if (c.c.weight[k] != 0.0f) push(c.slot[k + 1], J * -c.c.weight[k]);
-        }
-    };
-    // Each contact's target: the normal velocity that brings its gap to zero at the step's end
-    // (the free step's gap over h, taken from its normal velocity; at most kPushSpeed apart
-    // where it overlapped already), or the bounce's -e v_n when it was hit faster than
-    // bounce_speed and meets the surface in this step.
+}
+
+// The particle's velocity less the surface point's, sum w_i v_i.
+Vec3 SoftContacts::relative(const Active& c) const {
+    Vec3 v = local_v_[c.slot[0]];
+    for (int k = 0; k < 3; ++k) v -= local_v_[c.slot[k + 1]] * c.c.weight[k];
+    return v;
+}
+
+// The way from the surface point to the particle, after the free step.
+Vec3 SoftContacts::position(const std::vector<SoftBody>& bodies, const Active& c) const {
+    const SoftBody& A = bodies[c.c.body_a];
+    const SoftBody& B = bodies[c.c.body_b];
+    Vec3 d = A.x[c.c.particle];
+    for (int k = 0; k < 3; ++k) d -= B.x[c.c.other[k]] * c.c.weight[k];
+    return d;
+}
+
+void SoftContacts::push(std::uint32_t slot, const Vec3& impulse) {
+    const float im = local_im_[slot];
+    if (im == 0.0f) return;
+    const Vec3 dv = impulse * im;
+    local_v_[slot] += dv;
+    local_dv_[slot] += dv;
+    local_pushed_[slot] = 1;
+}
+
+// J on the particle, -w_i J on the triangle's corners: momentum kept.
+void SoftContacts::apply(const Active& c, const Vec3& J) {
+    push(c.slot[0], J);
+    for (int k = 0; k < 3; ++k) {
+        if (c.c.weight[k] != 0.0f) push(c.slot[k + 1], J * -c.c.weight[k]);
+    }
+}
+
+// Each contact's target: the normal velocity that brings its gap to zero at the step's end
+// (the free step's gap over h, taken from its normal velocity; at most kPushSpeed apart where
+// it overlapped already), or the bounce's -e v_n when it was hit faster than bounce_speed and
+// meets the surface in this step.
+void SoftContacts::set_targets(const std::vector<SoftBody>& bodies, float e, float bounce_speed, float h) {
     for (Active& c : active_) {
         const Vec3 n = to_float(c.c.normal);
-        const float gap_free = dot(position(c), n) - float(c.c.distance);
+        const float gap_free = dot(position(bodies, c), n) - float(c.c.distance);
         const float v_n = dot(relative(c), n);
         c.target = std::min(v_n - gap_free / h, kPushSpeed);
         if (gap_free < 0.0f && c.bounce > bounce_speed) c.target = std::max(c.target, e * c.bounce);
         c.c.normal_impulse = 0.0;
         c.friction = {};
     }
-    // Rigid points: each body's motion after its free step (and its own contacts), the arms
-    // and targets as for particles, with the body's restitution and friction where it sets them.
+}
+
+// A rigid point's velocity (its body's after the free step and this substep's impulses so far)
+// less the surface point's.
+Vec3d SoftContacts::rigid_relative(std::span<const RigidBody> rigid, const RigidActive& c) const {
+    const RigidBody& body = rigid[c.rigid];
+    const RigidMotion& m = motions_[c.rigid];
+    const Vec3d v = m.v + dP_[c.rigid] * body.inv_mass, w = m.omega + m.J_inv * dL_[c.rigid];
+    Vec3d u = v + cross(w, c.r);
+    for (int j = 0; j < 3; ++j) u -= Vec3d(local_v_[c.slot[j]]) * double(c.weight[j]);
+    return u;
+}
+
+// Eq. 38's denominator along a unit direction u: the rigid side's 1/m + u . ((J^-1 (r x u)) x r),
+// the triangle's sum w_i^2 / m_i.
+double SoftContacts::rigid_denominator(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                       const RigidActive& c, const Vec3d& u) const {
+    const RigidBody& body = rigid[c.rigid];
+    const RigidMotion& m = motions_[c.rigid];
+    double k = body.inv_mass + dot(u, cross(m.J_inv * cross(c.r, u), c.r));
+    for (int j = 0; j < 3; ++j) k += double(c.weight[j] * c.weight[j] * bodies[c.soft].inv_mass[c.other[j]]);
+    return k;
+}
+
+// J on the rigid body at its arm (Eq. 37), -w_i J on the triangle's corners.
+void SoftContacts::rigid_apply(std::span<const RigidBody> rigid, const RigidActive& c, const Vec3d& J) {
+    if (!rigid[c.rigid].fixed) {
+        dP_[c.rigid] += J;
+        dL_[c.rigid] += cross(c.r, J);  // Eq. 37
+    }
+    for (int j = 0; j < 3; ++j) {
+        const std::uint32_t slot = c.slot[j];
+        const float im = local_im_[slot];
+        if (c.weight[j] == 0.0f || im == 0.0f) continue;
+        const Vec3 dv = to_float(J * -double(c.weight[j] * im));
+        local_v_[slot] += dv;
+        local_dv_[slot] += dv;
+        local_pushed_[slot] = 1;
+    }
+}
+
+// Rigid points: each body's motion after its free step (and its own contacts), the arms and
+// targets as for particles, with the body's restitution where it sets one.
+void SoftContacts::set_rigid_targets(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                                     std::span<const double> state, float e, float bounce_speed, float h) {
     motions_.resize(rigid.size());
     dP_.assign(rigid.size(), {});
     dL_.assign(rigid.size(), {});
     for (std::size_t r = 0; r < rigid.size(); ++r) {
         if (!rigid_active_.empty()) motions_[r] = rigid_motion(rigid[r], &state[r * rigid::kStateSize]);
     }
-    const auto rigid_relative = [&](const RigidActive& c) {
-        const RigidBody& body = rigid[c.rigid];
-        const RigidMotion& m = motions_[c.rigid];
-        const Vec3d v = m.v + dP_[c.rigid] * body.inv_mass, w = m.omega + m.J_inv * dL_[c.rigid];
-        Vec3d u = v + cross(w, c.r);
-        for (int j = 0; j < 3; ++j) u -= Vec3d(local_v_[c.slot[j]]) * double(c.weight[j]);
-        return u;
-    };
-    // Eq. 38's denominator along a unit direction u: the rigid side's 1/m + u . ((J^-1 (r x u)) x r),
-    // the triangle's sum w_i^2 / m_i.
-    const auto rigid_denominator = [&](const RigidActive& c, const Vec3d& u) {
-        const RigidBody& body = rigid[c.rigid];
-        const RigidMotion& m = motions_[c.rigid];
-        double k = body.inv_mass + dot(u, cross(m.J_inv * cross(c.r, u), c.r));
-        for (int j = 0; j < 3; ++j) k += double(c.weight[j] * c.weight[j] * bodies[c.soft].inv_mass[c.other[j]]);
-        return k;
-    };
-    const auto rigid_apply = [&](const RigidActive& c, const Vec3d& J) {
-        if (!rigid[c.rigid].fixed) {
-            dP_[c.rigid] += J;
-            dL_[c.rigid] += cross(c.r, J);  // Eq. 37
-        }
-        for (int j = 0; j < 3; ++j) {
-            const std::uint32_t slot = c.slot[j];
-            const float im = local_im_[slot];
-            if (c.weight[j] == 0.0f || im == 0.0f) continue;
-            const Vec3 dv = to_float(J * -double(c.weight[j] * im));
-            local_v_[slot] += dv;
-            local_dv_[slot] += dv;
-            local_pushed_[slot] = 1;
-        }
-    };
     for (RigidActive& c : rigid_active_) {
         const RigidBody& body = rigid[c.rigid];
         const RigidMotion& m = motions_[c.rigid];
@@ -977,86 +868,92 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
         Vec3d q;
         for (int j = 0; j < 3; ++j) q += Vec3d(B.x[c.other[j]]) * double(c.weight[j]);
         const double gap_free = dot(p - q, c.n) - c.radius - kRigidThickness;
-        const double v_n = dot(rigid_relative(c), c.n);
+        const double v_n = dot(rigid_relative(rigid, c), c.n);
         c.target = std::min(v_n - gap_free / double(h), double(kPushSpeed));
         const double e_r = std::max(double(e), double(body.restitution.value_or(e)));
         if (gap_free < 0.0 && c.bounce > double(bounce_speed)) c.target = std::max(c.target, e_r * c.bounce);
         c.lambda = 0.0;
         c.friction = {};
     }
-    for (int pass = 0; pass < kPasses; ++pass) {
-        // Where the pass starts, to say how far it moved each velocity (below).
-        pass_v_.assign(local_v_.begin(), local_v_.end());
-        if (!rigid_active_.empty()) {
-            pass_dP_.assign(dP_.begin(), dP_.end());
-            pass_dL_.assign(dL_.begin(), dL_.end());
-        }
-        for (RigidActive& c : rigid_active_) {
-            const RigidBody& body = rigid[c.rigid];
-            const double k_n = rigid_denominator(c, c.n);
-            if (!(k_n > 0.0)) continue;
-            const double v_n = dot(rigid_relative(c), c.n);
-            const double lambda = std::max(0.0, c.lambda + (c.target - v_n) / k_n);
-            const double dl = lambda - c.lambda;
-            c.lambda = lambda;
-            if (dl != 0.0) rigid_apply(c, c.n * dl);
-            // Friction as for particles, along the slide, with its own denominator.
-            const double ms = body.friction ? double(*body.friction) : double(mu_s);
-            const double md = body.friction ? double(*body.friction) : double(mu_d);
-            const Vec3d v = rigid_relative(c);
-            const Vec3d v_t = v - c.n * dot(v, c.n);
-            const double slide = length(v_t);
-            Vec3d total = c.friction;
-            if (slide > 0.0) total -= v_t * (1.0 / rigid_denominator(c, v_t / slide));
-            const double size = length(total);
-            if (size > ms * lambda) total = size > 0.0 ? total * (md * lambda / size) : Vec3d{};
-            const Vec3d df = total - c.friction;
-            c.friction = total;
-            if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(c, df);
-        }
-        for (Active& c : active_) {
-            const Vec3 n = to_float(c.c.normal);
-            // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
-            Vec3 v = relative(c);
-            const float v_n = dot(v, n);
-            const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
-            const float dl = lambda - float(c.c.normal_impulse);
-            c.c.normal_impulse = lambda;
-            // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
-            // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
-            // The slide after the normal impulse: an impulse J on the contact (J on the particle,
-            // -w_i J on the corners, four different particles) changes v_rel by J times Eq. 38's
-            // denominator, so v_rel follows without gathering the velocities again, and both
-            // impulses go out together.
-            v += n * (dl * c.inv_mass_sum);
-            const Vec3 v_t = v - n * dot(v, n);
-            Vec3 total = c.friction - v_t / c.inv_mass_sum;
-            const float size = length(total);
-            if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
-            const Vec3 J = n * dl + (total - c.friction);
-            c.friction = total;
-            if (J.x != 0.0f || J.y != 0.0f || J.z != 0.0f) apply(c, J);
-        }
-        // Converged: the pass moved no particle's velocity, and no rigid body's at its farthest
-        // point, by more than kSettled. Measured on the velocities, not on each contact's
-        // impulse: where two contacts hold the same particles (a particle of each body over the
-        // other's triangle, at the same spot), passes go on shifting the load from one to the
-        // other by as much as they like while no velocity moves, and the contacts' impulses
-        // would never say the passes are done.
-        float moved = 0.0f;
-        for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
-            const Vec3 d = local_v_[slot] - pass_v_[slot];
-            moved = std::max(moved, dot(d, d));
-        }
-        moved = std::sqrt(moved);
-        for (std::size_t r = 0; r < pass_dP_.size() && !rigid_active_.empty(); ++r) {
-            const Vec3d dv = (dP_[r] - pass_dP_[r]) * rigid[r].inv_mass, dw = motions_[r].J_inv * (dL_[r] - pass_dL_[r]);
-            moved = std::max(moved, float(length(dv) + length(dw) * rigid[r].bounding_radius));
-        }
-        if (moved < kSettled) break;
+}
+
+// One pass over the rigid points: Eq. 38 along n, then friction as for particles, along the
+// slide, with its own denominator and the body's friction where it sets one.
+void SoftContacts::rigid_pass(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, float mu_s, float mu_d) {
+    for (RigidActive& c : rigid_active_) {
+        const RigidBody& body = rigid[c.rigid];
+        const double k_n = rigid_denominator(bodies, rigid, c, c.n);
+        if (!(k_n > 0.0)) continue;
+        const double v_n = dot(rigid_relative(rigid, c), c.n);
+        const double lambda = std::max(0.0, c.lambda + (c.target - v_n) / k_n);
+        const double dl = lambda - c.lambda;
+        c.lambda = lambda;
+        if (dl != 0.0) rigid_apply(rigid, c, c.n * dl);
+        const double ms = body.friction ? double(*body.friction) : double(mu_s);
+        const double md = body.friction ? double(*body.friction) : double(mu_d);
+        const Vec3d v = rigid_relative(rigid, c);
+        const Vec3d v_t = v - c.n * dot(v, c.n);
+        const double slide = length(v_t);
+        Vec3d total = c.friction;
+        if (slide > 0.0) total -= v_t * (1.0 / rigid_denominator(bodies, rigid, c, v_t / slide));
+        const double size = length(total);
+        if (size > ms * lambda) total = size > 0.0 ? total * (md * lambda / size) : Vec3d{};
+        const Vec3d df = total - c.friction;
+        c.friction = total;
+        if (df.x != 0.0 || df.y != 0.0 || df.z != 0.0) rigid_apply(rigid, c, df);
     }
-    // A rigid body's momenta take the impulses; its centre and turn follow by h times the
-    // velocity and spin they changed (dv = dP / m, dw = J_world^-1 dL).
+}
+
+// One pass over the particles' contacts.
+void SoftContacts::soft_pass(float mu_s, float mu_d) {
+    for (Active& c : active_) {
+        const Vec3 n = to_float(c.c.normal);
+        // Eq. 38 along n: lambda = (target - v_rel . n) / (1/m_1 + 1/m_2), summed and kept >= 0.
+        Vec3 v = relative(c);
+        const float v_n = dot(v, n);
+        const float lambda = std::max(0.0f, float(c.c.normal_impulse) + (c.target - v_n) / c.inv_mass_sum);
+        const float dl = lambda - float(c.c.normal_impulse);
+        c.c.normal_impulse = lambda;
+        // Friction (Eq. 24, 25 in impulse form): the tangential impulse that stops the slide,
+        // kept whole while within mu_s lambda (static: it holds), else mu_d lambda against it.
+        // The slide after the normal impulse: an impulse J on the contact (J on the particle,
+        // -w_i J on the corners, four different particles) changes v_rel by J times Eq. 38's
+        // denominator, so v_rel follows without gathering the velocities again, and both
+        // impulses go out together.
+        v += n * (dl * c.inv_mass_sum);
+        const Vec3 v_t = v - n * dot(v, n);
+        Vec3 total = c.friction - v_t / c.inv_mass_sum;
+        const float size = length(total);
+        if (size > mu_s * lambda) total = size > 0.0f ? total * (mu_d * lambda / size) : Vec3{};
+        const Vec3 J = n * dl + (total - c.friction);
+        c.friction = total;
+        if (J.x != 0.0f || J.y != 0.0f || J.z != 0.0f) apply(c, J);
+    }
+}
+
+// How far the pass that began at pass_v_ (pass_dP_, pass_dL_) moved any particle's velocity,
+// or any rigid body's at its farthest point. Measured on the velocities, not on each contact's
+// impulse: where two contacts hold the same particles (a particle of each body over the
+// other's triangle, at the same spot), passes go on shifting the load from one to the other by
+// as much as they like while no velocity moves, and the contacts' impulses would never say the
+// passes are done.
+float SoftContacts::pass_change(std::span<const RigidBody> rigid) const {
+    float moved = 0.0f;
+    for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
+        const Vec3 d = local_v_[slot] - pass_v_[slot];
+        moved = std::max(moved, dot(d, d));
+    }
+    moved = std::sqrt(moved);
+    for (std::size_t r = 0; r < pass_dP_.size() && !rigid_active_.empty(); ++r) {
+        const Vec3d dv = (dP_[r] - pass_dP_[r]) * rigid[r].inv_mass, dw = motions_[r].J_inv * (dL_[r] - pass_dL_[r]);
+        moved = std::max(moved, float(length(dv) + length(dw) * rigid[r].bounding_radius));
+    }
+    return moved;
+}
+
+// A rigid body's momenta take the impulses; its centre and turn follow by h times the velocity
+// and spin they changed (dv = dP / m, dw = J_world^-1 dL).
+void SoftContacts::move_rigid(std::span<const RigidBody> rigid, std::span<double> state, float h) const {
     for (std::size_t r = 0; r < rigid.size(); ++r) {
         if (rigid[r].fixed || (dP_[r] == Vec3d{} && dL_[r] == Vec3d{})) continue;
         double* y = &state[r * rigid::kStateSize];
@@ -1075,8 +972,11 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
             y[rigid::Q + 3] = q.z;
         }
     }
-    // The positions follow the velocity the impulses changed: x += h dv (Verlet's step too).
-    const bool verlet = world.integrator == Integrator::Verlet;
+}
+
+// The velocities back onto the bodies, and the positions follow the velocity the impulses
+// changed: x += h dv (Verlet's step too). The compact copy emptied for the next substep.
+void SoftContacts::scatter(std::vector<SoftBody>& bodies, bool verlet, float h) {
     for (std::size_t slot = 0; slot < local_v_.size(); ++slot) {
         const auto [b, i] = local_of_[slot];
         slot_[b][i] = kNoSlot;
@@ -1092,6 +992,32 @@ void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBod
     local_im_.clear();
     local_of_.clear();
     local_pushed_.clear();
+}
+
+void SoftContacts::solve(std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<double> state,
+                         const WorldSettings& world, float h) {
+    touching_.clear();
+    if (active_.empty() && rigid_active_.empty()) return;
+    const float e = world.restitution, mu_s = world.static_friction, mu_d = world.dynamic_friction;
+    // As for the rigid contacts: impacts slower than two ticks' worth of gravity are resting contact.
+    const float bounce_speed = 2.0f * length(world.gravity) * world.dt;
+    gather(bodies);
+    set_targets(bodies, e, bounce_speed, h);
+    set_rigid_targets(bodies, rigid, state, e, bounce_speed, h);
+    for (int pass = 0; pass < kPasses; ++pass) {
+        // Where the pass starts, to say how far it moved each velocity (pass_change).
+        pass_v_.assign(local_v_.begin(), local_v_.end());
+        if (!rigid_active_.empty()) {
+            pass_dP_.assign(dP_.begin(), dP_.end());
+            pass_dL_.assign(dL_.begin(), dL_.end());
+        }
+        rigid_pass(bodies, rigid, mu_s, mu_d);
+        soft_pass(mu_s, mu_d);
+        // Converged: the pass moved no velocity by more than kSettled.
+        if (pass_change(rigid) < kSettled) break;
+    }
+    move_rigid(rigid, state, h);
+    scatter(bodies, world.integrator == Integrator::Verlet, h);
     for (const Active& c : active_) {
         if (c.c.normal_impulse <= 0.0) continue;
         SoftContact out = c.c;

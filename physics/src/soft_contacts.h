@@ -30,6 +30,8 @@
 // of one nearest-point query per pair and substep. And a body resting on another rests: the
 // gap each substep's gravity closes is exactly what the impulse takes away (the target is a
 // gap of zero at the step's end), so nothing jitters and nothing creeps in.
+// The geometry it asks (a triangle's nearest point, which way is out of a closed surface, the
+// winding number, a hull's points) is triangle_queries.h's, with the other collision queries.
 // What it does not catch: two edges crossing with no particle near the other's surface
 // (coarse meshes, edge on edge). Meshes with particles a few thicknesses apart do not show it.
 //
@@ -55,6 +57,7 @@
 #include "physics/rigid_body.h"
 #include "physics/soft_body.h"
 #include "physics/thread_pool.h"
+#include "triangle_queries.h"
 
 namespace softbody {
 
@@ -99,23 +102,16 @@ public:
     }
 
 private:
-    struct Surface {
-        std::vector<std::uint32_t> triangles;  // three particles each
+    // The surface's triangles and shape (triangle_queries.h). A closed one has an inside: its
+    // contacts are signed (make_contact, by outward() and inside()). `orient` says which way its winding faces this tick:
+    // +1 out, -1 in (the file winds it inward, or the body has been crushed through itself and
+    // come out mirrored: its springs, every pair's, hold a mirror image as well as the shape),
+    // 0 while it is squashed nearly flat (a quarter of its volume at rest or less: no inside
+    // worth the name; its contacts are two-sided).
+    struct Surface : TriangleSurface {
         float radius = 0.0f;                   // of each particle: 0 with faces, else half the spacing
         Bvh tree;                              // over the triangles, or over the particles without faces
         std::vector<Box3f> boxes;
-        // A closed surface (every edge between exactly two triangles, wound the same way) has
-        // an inside: its contacts are signed (outward below). `orient` says which way its
-        // winding faces this tick: +1 out, -1 in (the file winds it inward, or the body has
-        // been crushed through itself and come out mirrored: its springs, every pair's, hold a
-        // mirror image as well as the shape), 0 while it is squashed nearly flat (a quarter of
-        // its volume at rest or less: no inside worth the name; its contacts are two-sided).
-        bool closed = false;
-        double rest_volume = 0.0;   // six times it, signed by the winding
-        float orient = 1.0f;
-        std::vector<std::uint32_t> across;     // per triangle and edge (k to k + 1): the triangle on its other side
-        std::vector<std::uint32_t> fan_begin;  // per particle: its triangles are fan[fan_begin[i]] up to fan_begin[i + 1]
-        std::vector<std::uint32_t> fan;
     };
     struct Pair {
         std::uint32_t a, p, b, prim;  // particle p of body a against triangle (or particle) prim of body b
@@ -147,20 +143,15 @@ private:
         float inv_mass_sum = 0.0f;
     };
     bool nearest(const std::vector<SoftBody>& bodies, const Pair& pair, Near& out) const;
-    // A closed surface's outward direction at the point of triangle `tri` with weights w
-    // (not of unit length): the face's normal on the face, the two faces' beside an edge,
-    // and the faces' around a corner weighted by their angles there. Its sign against the
-    // way from that nearest point to a particle says whether the particle is inside.
-    Vec3 outward(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w) const;
-    // Whether point p, `away` from its nearest point (triangle tri, weights w) of closed surface
-    // s, is inside it: by outward() where that is clear, else by the winding number.
-    bool inside(const Surface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w, const Vec3& p,
-                const Vec3& away) const;
     // A particle of body a inside closed body b, farther in than its pairs reach: its pair
     // with b's nearest triangle (appended to out), or nothing when it is outside.
     void find_inside(const std::vector<SoftBody>& bodies, std::size_t a, std::size_t b, std::uint32_t p, float d,
                      std::vector<Pair>& out) const;
     void make_contact(const std::vector<SoftBody>& bodies, const Pair& pair, const Near& near, Active& c) const;
+    // begin_substep's two halves: the rigid points' contacts, and one span of the particles'.
+    void begin_rigid_substep(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid,
+                             std::span<const double> state);
+    void begin_span(const std::vector<SoftBody>& bodies, std::size_t span);
 
     // A rigid body's point (a sphere's centre, or a hull vertex) against a soft body's triangle.
     struct RigidPair {
@@ -181,8 +172,42 @@ private:
         double separation = 0.0;
         std::uint32_t slot[3] = {0, 0, 0};  // solve's slots of the triangle's corners
     };
+    // find's stages, in its order (each says what it does where it is defined). `whole`: each
+    // soft body's box, grown by how far its particles can go in the tick.
+    void orient_surfaces(const std::vector<SoftBody>& bodies);
+    std::vector<Box3f> reach_boxes(const std::vector<SoftBody>& bodies, float h, float g);
+    void grow_rigid_boxes(std::span<const RigidBody> rigid, std::span<const double> state, double dt, float g);
+    bool meets(const std::vector<SoftBody>& bodies, const std::vector<Box3f>& whole, std::size_t a, std::size_t b) const;
+    bool meets_rigid(const std::vector<Box3f>& whole, std::size_t r, std::size_t b) const;
+    bool can_reuse(const std::vector<SoftBody>& bodies, const std::vector<std::uint8_t>& meeting, bool rigid_meets) const;
+    void refit_trees(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, const std::vector<Box3f>& whole,
+                     ThreadPool& pool);
+    void find_soft_pairs(const std::vector<SoftBody>& bodies, const std::vector<Box3f>& whole, ThreadPool& pool);
+    void make_groups(const std::vector<SoftBody>& bodies);
     void find_rigid(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
-                    const WorldSettings& world, double dt);
+                    const std::vector<Box3f>& whole, double dt, float g);
+    void remember_search(const std::vector<SoftBody>& bodies, std::vector<std::uint8_t> meeting, bool rigid_meets);
+    // solve's stages, in its order, and what they share: the compact copy of the velocities
+    // (slot_of), the relative velocity and gap of a contact, an impulse applied.
+    std::uint32_t slot_of(const std::vector<SoftBody>& bodies, std::uint32_t body, std::uint32_t i);
+    void gather(const std::vector<SoftBody>& bodies);
+    Vec3 relative(const Active& c) const;
+    Vec3 position(const std::vector<SoftBody>& bodies, const Active& c) const;
+    void push(std::uint32_t slot, const Vec3& impulse);
+    void apply(const Active& c, const Vec3& J);
+    void set_targets(const std::vector<SoftBody>& bodies, float e, float bounce_speed, float h);
+    Vec3d rigid_relative(std::span<const RigidBody> rigid, const RigidActive& c) const;
+    double rigid_denominator(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, const RigidActive& c,
+                             const Vec3d& u) const;
+    void rigid_apply(std::span<const RigidBody> rigid, const RigidActive& c, const Vec3d& J);
+    void set_rigid_targets(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, std::span<const double> state,
+                           float e, float bounce_speed, float h);
+    void rigid_pass(const std::vector<SoftBody>& bodies, std::span<const RigidBody> rigid, float mu_s, float mu_d);
+    void soft_pass(float mu_s, float mu_d);
+    float pass_change(std::span<const RigidBody> rigid) const;
+    void move_rigid(std::span<const RigidBody> rigid, std::span<double> state, float h) const;
+    void scatter(std::vector<SoftBody>& bodies, bool verlet, float h);
+
     std::vector<RigidPair> rigid_pairs_;
     std::vector<RigidActive> rigid_active_;
     std::vector<Vec3d> dP_, dL_;     // per rigid body: what this substep's impulses added

@@ -1,11 +1,14 @@
-// The frame, pass by pass:
+// The frame, pass by pass (Renderer::draw, one function of State each):
 //   1. each soft body's particles interpolated, normals recomputed, vertices streamed
 //      (deform.h); each rigid body's fixed mesh uploaded once and its model matrix made
+//      (prepare_soft, prepare_rigid); the overlays' lines and spheres (build_overlays)
 //   2. the sun's shadow map: depth moments of the bodies (and overlay spheres), mipmapped
-//   3. multisampled: the floor (grid, soft shadows, contact darkening), the solid bodies, the
-//      sky where nothing else is, the overlays and see-through soft bodies, the always-visible
-//      markers
-//   4. resolve the samples, copy to the caller's framebuffer
+//      (draw_shadow_map)
+//   3. multisampled (begin_scene): the floor (grid, soft shadows, contact darkening:
+//      draw_ground), the solid bodies (draw_solid_bodies), the sky where nothing else is
+//      (draw_sky), the overlays and see-through soft bodies, the always-visible markers
+//      (draw_overlays)
+//   4. resolve the samples, copy to the caller's framebuffer (resolve)
 #include "render/renderer.h"
 
 #include <glad/gl.h>
@@ -103,6 +106,34 @@ struct RigidDraw {
     glm::vec3 low{0.0f}, high{0.0f};  // world bounding box
 };
 
+// The bodies of a frame as one shape: for fitting the sun's shadow map, sizing the grid, the
+// haze and the markers, and darkening the floor under each body.
+struct SceneShape {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;      // of a sphere about `centre` holding every body
+    float body_size = 1e-3f;  // the largest moving body's radius (at rest, for a soft body)
+    std::vector<glm::vec3> occluder_centres, occluder_axes;
+    bool any = false;
+};
+
+// What the passes of one frame share: the frame, the image's size, the camera's matrices.
+struct FramePass {
+    const Frame& frame;
+    int width = 0, height = 0;
+    float aspect = 1.0f;
+    glm::mat4 view_projection{1.0f};
+    glm::vec3 eye{0.0f};
+};
+
+// The sun's shadow map as the lit passes read it (set_lighting): off when there is nothing to
+// cast a shadow, or shadows are turned off.
+struct SunShadow {
+    bool on = false;
+    glm::mat4 matrix{1.0f};       // world to the map's texture coordinates and depth
+    float penumbra_scale = 0.0f;  // the penumbra's width per unit of depth behind the occluder
+    float normal_offset = 0.0f;   // how far a surface is lifted along its normal before the lookup
+};
+
 struct Renderer::State {
     RendererInfo info;
     DrawTimings timings;
@@ -141,6 +172,19 @@ struct Renderer::State {
                     const glm::vec3& eye);
     void draw_spheres(const std::vector<SphereInstance>& spheres, const Camera& camera, float aspect,
                       const glm::mat4& shadow_matrix);
+
+    // draw()'s passes, in the order it makes them.
+    void build_overlays(const Frame& frame, const SceneShape& scene);
+    SunShadow draw_shadow_map(const Appearance& look, const SceneShape& scene);
+    void begin_scene(int width, int height, int samples);
+    void draw_ground(const FramePass& pass, const SceneShape& scene, const SunShadow& sun);
+    void draw_body(const FramePass& pass, const SunShadow& sun, const MeshGpu& gpu, const glm::mat4& model,
+                   const glm::mat3& normal_matrix, const glm::vec3& color, float size, float opacity, bool two_sided);
+    void draw_soft_surfaces(const FramePass& pass, const SunShadow& sun, float opacity, bool two_sided);
+    void draw_solid_bodies(const FramePass& pass, const SunShadow& sun);
+    void draw_sky(const FramePass& pass);
+    void draw_overlays(const FramePass& pass, const SunShadow& sun);
+    void resolve(int width, int height, unsigned target_framebuffer);
 };
 
 Renderer::Renderer(Loader loader) : state_(std::make_unique<State>()) {
@@ -449,16 +493,6 @@ namespace {
 
 constexpr int kMaxOccluders = 16;  // as in ground.frag.glsl
 
-// The bodies of a frame as one shape: for fitting the sun's shadow map, sizing the grid, the
-// haze and the markers, and darkening the floor under each body.
-struct SceneShape {
-    glm::vec3 centre{0.0f};
-    float radius = 0.0f;      // of a sphere about `centre` holding every body
-    float body_size = 1e-3f;  // the largest moving body's radius (at rest, for a soft body)
-    std::vector<glm::vec3> occluder_centres, occluder_axes;
-    bool any = false;
-};
-
 SceneShape measure_scene(const Frame& frame, const std::vector<SoftDraw>& soft, const std::vector<RigidDraw>& rigid) {
     SceneShape scene;
     struct Box {
@@ -512,48 +546,38 @@ SceneShape measure_scene(const Frame& frame, const std::vector<SoftDraw>& soft, 
     return scene;
 }
 
+void draw_mesh(const MeshGpu& gpu) {
+    glBindVertexArray(gpu.vao.id());
+    glDrawElements(GL_TRIANGLES, gpu.index_count(), GL_UNSIGNED_INT, nullptr);
+}
+
 }  // namespace
 
-void Renderer::draw(const Frame& frame, int width, int height, unsigned target_framebuffer) {
-    if (width <= 0 || height <= 0) return;
-    State& s = *state_;
-    const auto start = Clock::now();
-    const Appearance& look = frame.appearance;
-    const Camera& camera = frame.camera;
-    const float aspect = float(width) / float(height);
-    const glm::mat4 view_projection = camera.projection(aspect) * camera.view();
-    const glm::vec3 eye = camera.eye();
-    const glm::mat4 identity(1.0f);
-    const glm::mat3 identity3(1.0f);
-
-    // --- The bodies this frame: soft ones' positions, normals, shape; rigid ones' placement ---
-    s.prepare_soft(frame);
-    s.prepare_rigid(frame);
-    const SceneShape scene = measure_scene(frame, s.soft, s.rigid);
-
+// The overlays' lines and spheres for this frame, from the soft bodies as drawn.
+void Renderer::State::build_overlays(const Frame& frame, const SceneShape& scene) {
     std::vector<SoftBodyDrawn> soft_drawn;
-    for (const SoftDraw& d : s.soft) {
+    for (const SoftDraw& d : soft) {
         soft_drawn.push_back({d.particles, d.has_surface ? std::span<const SurfaceVertex>(d.surface.vertices())
                                                          : std::span<const SurfaceVertex>(),
                               d.shape});
     }
-    s.overlay_builder.build(frame, soft_drawn, scene.body_size, s.overlays);
+    overlay_builder.build(frame, soft_drawn, scene.body_size, overlays);
+}
+
+// The sun's shadow map, fitted to the bodies (and the overlays' spheres): an orthographic view
+// along the sun's rays holding a sphere about them all, deep enough to reach the floor below.
+// The moments are mipmapped for the soft shadows' lookups (lighting.glsl). Leaves the map bound
+// to texture unit 0 for the lit passes, made or not.
+SunShadow Renderer::State::draw_shadow_map(const Appearance& look, const SceneShape& scene) {
     float largest_sphere = 0.0f;
-    for (const SphereInstance& sphere : s.overlays.spheres) largest_sphere = std::max(largest_sphere, sphere.radius);
+    for (const SphereInstance& ball : overlays.spheres) largest_sphere = std::max(largest_sphere, ball.radius);
     bool any_surface = false;
-    for (const SoftDraw& d : s.soft) any_surface |= d.has_surface;
-    for (const RigidDraw& d : s.rigid) any_surface |= d.gpu.index_count() > 0;
+    for (const SoftDraw& d : soft) any_surface |= d.has_surface;
+    for (const RigidDraw& d : rigid) any_surface |= d.gpu.index_count() > 0;
 
-    const auto draw_mesh = [&](const MeshGpu& gpu) {
-        glBindVertexArray(gpu.vao.id());
-        glDrawElements(GL_TRIANGLES, gpu.index_count(), GL_UNSIGNED_INT, nullptr);
-    };
-
-    // --- Shadow map, fitted to the bodies ----------------------------------------------------
-    const bool shadows = look.shadows && (any_surface || !s.overlays.spheres.empty());
-    glm::mat4 shadow_matrix(1.0f);
-    float penumbra_scale = 0.0f, normal_offset = 0.0f;
-    if (shadows) {
+    SunShadow sun;
+    sun.on = look.shadows && (any_surface || !overlays.spheres.empty());
+    if (sun.on) {
         const float r = std::max(scene.radius, 1e-3f) * 1.05f + largest_sphere;
         const glm::vec3 c = scene.centre;
         const glm::vec3 up = std::abs(kSunDirection.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
@@ -564,11 +588,11 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         const glm::mat4 light_projection = glm::ortho(-r, r, -r, r, near_plane, far_plane);
         const glm::mat4 light = light_projection * light_view;
         const glm::mat4 to_unit = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
-        shadow_matrix = to_unit * light;
-        penumbra_scale = (far_plane - near_plane) * std::tan(kSunAngularRadius) / (2.0f * r);
-        normal_offset = 2.0f * (2.0f * r / float(kShadowMapSize));
+        sun.matrix = to_unit * light;
+        sun.penumbra_scale = (far_plane - near_plane) * std::tan(kSunAngularRadius) / (2.0f * r);
+        sun.normal_offset = 2.0f * (2.0f * r / float(kShadowMapSize));
 
-        glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_fbo.id());
+        glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo.id());
         glViewport(0, 0, kShadowMapSize, kShadowMapSize);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -577,37 +601,39 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
         glClearColor(1.0f, 1.0f, 0.0f, 0.0f);  // the far plane: nothing in the way
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         if (any_surface) {
-            s.shadow.use();
-            set(s.shadow.uniform("u_shadow_view_projection"), light);
-            set(s.shadow.uniform("u_model"), identity);
-            for (const SoftDraw& d : s.soft) {
+            shadow.use();
+            set(shadow.uniform("u_shadow_view_projection"), light);
+            set(shadow.uniform("u_model"), glm::mat4(1.0f));
+            for (const SoftDraw& d : soft) {
                 if (d.has_surface) draw_mesh(d.gpu);
             }
-            for (const RigidDraw& d : s.rigid) {
+            for (const RigidDraw& d : rigid) {
                 if (d.gpu.index_count() == 0) continue;
-                set(s.shadow.uniform("u_model"), d.model);
+                set(shadow.uniform("u_model"), d.model);
                 draw_mesh(d.gpu);
             }
         }
-        if (!s.overlays.spheres.empty()) {
-            s.sphere_shadow.use();
-            set(s.sphere_shadow.uniform("u_light_view"), light_view);
-            set(s.sphere_shadow.uniform("u_light_projection"), light_projection);
-            gl::stream(GL_ARRAY_BUFFER, s.sphere_vbo.id(), s.overlays.spheres.data(),
-                       static_cast<GLsizeiptr>(s.overlays.spheres.size() * sizeof(SphereInstance)));
-            glBindVertexArray(s.sphere_vao.id());
-            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(s.overlays.spheres.size()));
+        if (!overlays.spheres.empty()) {
+            sphere_shadow.use();
+            set(sphere_shadow.uniform("u_light_view"), light_view);
+            set(sphere_shadow.uniform("u_light_projection"), light_projection);
+            gl::stream(GL_ARRAY_BUFFER, sphere_vbo.id(), overlays.spheres.data(),
+                       static_cast<GLsizeiptr>(overlays.spheres.size() * sizeof(SphereInstance)));
+            glBindVertexArray(sphere_vao.id());
+            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(overlays.spheres.size()));
         }
-        glBindTexture(GL_TEXTURE_2D, s.shadow_texture.id());
+        glBindTexture(GL_TEXTURE_2D, shadow_texture.id());
         glGenerateMipmap(GL_TEXTURE_2D);
     }
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, s.shadow_texture.id());
+    glBindTexture(GL_TEXTURE_2D, shadow_texture.id());
+    return sun;
+}
 
-    // --- Main pass, multisampled -------------------------------------------------------------
-    const int samples = std::clamp(look.samples, 1, std::max(1, s.info.max_samples));
-    s.ensure_targets(width, height, samples);
-    glBindFramebuffer(GL_FRAMEBUFFER, s.msaa_fbo.id());
+// The multisampled target at this size, bound and cleared, depth tested.
+void Renderer::State::begin_scene(int width, int height, int samples) {
+    ensure_targets(width, height, std::clamp(samples, 1, std::max(1, info.max_samples)));
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo.id());
     glViewport(0, 0, width, height);
     glDepthMask(GL_TRUE);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
@@ -616,127 +642,150 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
+}
 
+// The floor: its grid sized to the bodies, soft shadows, and darkening under each body (its
+// occluders: ellipsoids about the largest bodies' boxes).
+void Renderer::State::draw_ground(const FramePass& pass, const SceneShape& scene, const SunShadow& sun) {
+    const Appearance& look = pass.frame.appearance;
+    const Camera& camera = pass.frame.camera;
     const float body_size = scene.body_size;
-    if (look.ground) {
-        s.ground.use();
-        set(s.ground.uniform("u_view_projection"), view_projection);
-        set(s.ground.uniform("u_centre"), glm::vec2(camera.target.x, camera.target.y));
-        set(s.ground.uniform("u_half_size"), std::max(camera.far_plane * 0.5f, 60.0f * body_size));
-        set(s.ground.uniform("u_height"), look.ground_height);
-        set(s.ground.uniform("u_floor_color"), kFloorColor);
-        set(s.ground.uniform("u_grid_major"), grid_spacing(body_size));
-        set(s.ground.uniform("u_fog_distance"), 3.0f * camera.distance + 12.0f * body_size);
-        const GLsizei occluders = static_cast<GLsizei>(scene.occluder_centres.size());
-        set(s.ground.uniform("u_occluder_count"), int(occluders));
-        if (occluders > 0) {
-            glUniform3fv(s.ground.uniform("u_occluder_centre"), occluders, glm::value_ptr(scene.occluder_centres[0]));
-            glUniform3fv(s.ground.uniform("u_occluder_axes"), occluders, glm::value_ptr(scene.occluder_axes[0]));
-        }
-        set(s.ground.uniform("u_occlusion"), scene.any ? 0.75f : 0.0f);
-        s.set_lighting(s.ground, eye, shadow_matrix, shadows, penumbra_scale, normal_offset);
-        // Pushed back a little in depth: a body flattened onto the floor stays in front of it.
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(2.0f, 4.0f);
-        glBindVertexArray(s.empty_vao.id());
-        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-        glDisable(GL_POLYGON_OFFSET_FILL);
+    ground.use();
+    set(ground.uniform("u_view_projection"), pass.view_projection);
+    set(ground.uniform("u_centre"), glm::vec2(camera.target.x, camera.target.y));
+    set(ground.uniform("u_half_size"), std::max(camera.far_plane * 0.5f, 60.0f * body_size));
+    set(ground.uniform("u_height"), look.ground_height);
+    set(ground.uniform("u_floor_color"), kFloorColor);
+    set(ground.uniform("u_grid_major"), grid_spacing(body_size));
+    set(ground.uniform("u_fog_distance"), 3.0f * camera.distance + 12.0f * body_size);
+    const GLsizei occluders = static_cast<GLsizei>(scene.occluder_centres.size());
+    set(ground.uniform("u_occluder_count"), int(occluders));
+    if (occluders > 0) {
+        glUniform3fv(ground.uniform("u_occluder_centre"), occluders, glm::value_ptr(scene.occluder_centres[0]));
+        glUniform3fv(ground.uniform("u_occluder_axes"), occluders, glm::value_ptr(scene.occluder_axes[0]));
     }
+    set(ground.uniform("u_occlusion"), scene.any ? 0.75f : 0.0f);
+    set_lighting(ground, pass.eye, sun.matrix, sun.on, sun.penumbra_scale, sun.normal_offset);
+    // Pushed back a little in depth: a body flattened onto the floor stays in front of it.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(2.0f, 4.0f);
+    glBindVertexArray(empty_vao.id());
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
 
-    // One body's surface: soft bodies with the identity model matrix, rigid ones with theirs.
-    const auto draw_body = [&](const MeshGpu& gpu, const glm::mat4& model, const glm::mat3& normal_matrix,
-                               const glm::vec3& color, float size, float opacity, bool two_sided) {
-        s.body.use();
-        set(s.body.uniform("u_view_projection"), view_projection);
-        set(s.body.uniform("u_model"), model);
-        set(s.body.uniform("u_normal_matrix"), normal_matrix);
-        set(s.body.uniform("u_body_color"), color);
-        set(s.body.uniform("u_pattern"), look.pattern ? 1.0f : 0.0f);
-        set(s.body.uniform("u_opacity"), opacity);
-        set(s.body.uniform("u_two_sided"), two_sided ? 1.0f : 0.0f);
-        set(s.body.uniform("u_ground_height"), look.ground ? look.ground_height : -1e30f);
-        set(s.body.uniform("u_contact_range"), 0.6f * size);
-        s.set_lighting(s.body, eye, shadow_matrix, shadows, penumbra_scale, normal_offset);
-        draw_mesh(gpu);
-    };
-    const auto draw_soft = [&](float opacity, bool two_sided) {
-        for (const SoftDraw& d : s.soft) {
-            if (d.has_surface) draw_body(d.gpu, identity, identity3, d.color, std::max(d.shape.rest_radius, 1e-3f), opacity, two_sided);
+// One body's surface: soft bodies with the identity model matrix, rigid ones with theirs.
+void Renderer::State::draw_body(const FramePass& pass, const SunShadow& sun, const MeshGpu& gpu, const glm::mat4& model,
+                                const glm::mat3& normal_matrix, const glm::vec3& color, float size, float opacity,
+                                bool two_sided) {
+    const Appearance& look = pass.frame.appearance;
+    body.use();
+    set(body.uniform("u_view_projection"), pass.view_projection);
+    set(body.uniform("u_model"), model);
+    set(body.uniform("u_normal_matrix"), normal_matrix);
+    set(body.uniform("u_body_color"), color);
+    set(body.uniform("u_pattern"), look.pattern ? 1.0f : 0.0f);
+    set(body.uniform("u_opacity"), opacity);
+    set(body.uniform("u_two_sided"), two_sided ? 1.0f : 0.0f);
+    set(body.uniform("u_ground_height"), look.ground ? look.ground_height : -1e30f);
+    set(body.uniform("u_contact_range"), 0.6f * size);
+    set_lighting(body, pass.eye, sun.matrix, sun.on, sun.penumbra_scale, sun.normal_offset);
+    draw_mesh(gpu);
+}
+
+// Every soft body that has a surface, at one opacity (a see-through body's two halves).
+void Renderer::State::draw_soft_surfaces(const FramePass& pass, const SunShadow& sun, float opacity, bool two_sided) {
+    for (const SoftDraw& d : soft) {
+        if (d.has_surface) {
+            draw_body(pass, sun, d.gpu, glm::mat4(1.0f), glm::mat3(1.0f), d.color, std::max(d.shape.rest_radius, 1e-3f),
+                      opacity, two_sided);
         }
-    };
+    }
+}
+
+// The opaque bodies: solid soft bodies, then every rigid body.
+void Renderer::State::draw_solid_bodies(const FramePass& pass, const SunShadow& sun) {
     // A closed body hides its back faces (they would fight with the front ones when it is
     // crushed flat); an open one shows both sides.
-    if (look.body == BodyStyle::Solid) {
-        for (const SoftDraw& d : s.soft) {
+    if (pass.frame.appearance.body == BodyStyle::Solid) {
+        for (const SoftDraw& d : soft) {
             if (!d.has_surface) continue;
             if (d.gpu.closed) glEnable(GL_CULL_FACE);
             glCullFace(GL_BACK);
-            draw_body(d.gpu, identity, identity3, d.color, std::max(d.shape.rest_radius, 1e-3f), 1.0f, false);
+            draw_body(pass, sun, d.gpu, glm::mat4(1.0f), glm::mat3(1.0f), d.color, std::max(d.shape.rest_radius, 1e-3f), 1.0f,
+                      false);
             glDisable(GL_CULL_FACE);
         }
     }
     // Rigid bodies are always solid; fixed ones (scenery) in a quieter tone of their colour.
-    for (std::size_t b = 0; b < s.rigid.size(); ++b) {
-        const RigidDraw& d = s.rigid[b];
+    for (std::size_t b = 0; b < rigid.size(); ++b) {
+        const RigidDraw& d = rigid[b];
         if (d.gpu.index_count() == 0) continue;
-        const RigidBodyView& view = frame.rigid_bodies[b];
+        const RigidBodyView& view = pass.frame.rigid_bodies[b];
         const glm::vec3 color = view.fixed ? glm::mix(view.color, glm::vec3(0.62f, 0.62f, 0.6f), 0.6f) : view.color;
         if (d.gpu.closed) glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        draw_body(d.gpu, d.model, d.normal_matrix, color, std::max(view.radius, 1e-3f), 1.0f, false);
+        draw_body(pass, sun, d.gpu, d.model, d.normal_matrix, color, std::max(view.radius, 1e-3f), 1.0f, false);
         glDisable(GL_CULL_FACE);
     }
+}
 
-    // The sky, on the far plane: only where nothing else was drawn (the cheaper order).
+// The sky, on the far plane: only where nothing else was drawn (the cheaper order).
+void Renderer::State::draw_sky(const FramePass& pass) {
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
-    s.sky.use();
-    set(s.sky.uniform("u_inverse_view_projection"), glm::inverse(view_projection));
-    set(s.sky.uniform("u_sun_dir"), kSunDirection);
-    set(s.sky.uniform("u_eye"), eye);
-    glBindVertexArray(s.empty_vao.id());
+    sky.use();
+    set(sky.uniform("u_inverse_view_projection"), glm::inverse(pass.view_projection));
+    set(sky.uniform("u_sun_dir"), kSunDirection);
+    set(sky.uniform("u_eye"), pass.eye);
+    glBindVertexArray(empty_vao.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+}
 
-    // Overlays inside or on the bodies, depth tested.
-    // A see-through body wraps them: its far side first, the lines, then its near side.
+// The overlays, blended: those inside or on the bodies depth tested (a see-through body wraps
+// them: its far side first, the lines, then its near side), then the markers that must always
+// show (the centre of mass sits inside the body).
+void Renderer::State::draw_overlays(const FramePass& pass, const SunShadow& sun) {
+    const Camera& camera = pass.frame.camera;
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    s.draw_spheres(s.overlays.spheres, camera, aspect, shadow_matrix);
+    draw_spheres(overlays.spheres, camera, pass.aspect, sun.matrix);
     glDepthMask(GL_FALSE);
-    const bool ghost = look.body == BodyStyle::Ghost;
+    const bool ghost = pass.frame.appearance.body == BodyStyle::Ghost;
     if (ghost) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT);
-        draw_soft(kGhostOpacity * 0.6f, true);
+        draw_soft_surfaces(pass, sun, kGhostOpacity * 0.6f, true);
         glDisable(GL_CULL_FACE);
     }
-    s.draw_lines(s.overlays.lines, view_projection, width, height, eye);
+    draw_lines(overlays.lines, pass.view_projection, pass.width, pass.height, pass.eye);
     if (ghost) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        draw_soft(kGhostOpacity, true);
+        draw_soft_surfaces(pass, sun, kGhostOpacity, true);
         glDisable(GL_CULL_FACE);
     }
 
-    // Markers that must always show (the centre of mass sits inside the body).
     glDisable(GL_DEPTH_TEST);
-    s.draw_lines(s.overlays.lines_on_top, view_projection, width, height, eye);
+    draw_lines(overlays.lines_on_top, pass.view_projection, pass.width, pass.height, pass.eye);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glClear(GL_DEPTH_BUFFER_BIT);
-    s.draw_spheres(s.overlays.spheres_on_top, camera, aspect, shadow_matrix);
+    draw_spheres(overlays.spheres_on_top, camera, pass.aspect, sun.matrix);
+}
 
-    // --- Resolve the samples, then copy to the caller's framebuffer ---------------------------
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, s.msaa_fbo.id());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s.resolve_fbo.id());
+// Resolve the samples, copy to the caller's framebuffer, and leave GL as a caller expects to
+// find it (renderer.h).
+void Renderer::State::resolve(int width, int height, unsigned target_framebuffer) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo.id());
     glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, s.resolve_fbo.id());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo.id());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_framebuffer);
     glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 
-    // --- Leave GL as a caller expects to find it ----------------------------------------------
     glBindFramebuffer(GL_FRAMEBUFFER, target_framebuffer);
     glDisable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ZERO);
@@ -747,6 +796,28 @@ void Renderer::draw(const Frame& frame, int width, int height, unsigned target_f
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     glUseProgram(0);
+}
+
+// The frame, pass by pass (the list at the top of this file).
+void Renderer::draw(const Frame& frame, int width, int height, unsigned target_framebuffer) {
+    if (width <= 0 || height <= 0) return;
+    State& s = *state_;
+    const auto start = Clock::now();
+    const Camera& camera = frame.camera;
+    const float aspect = float(width) / float(height);
+    const FramePass pass{frame, width, height, aspect, camera.projection(aspect) * camera.view(), camera.eye()};
+
+    s.prepare_soft(frame);
+    s.prepare_rigid(frame);
+    const SceneShape scene = measure_scene(frame, s.soft, s.rigid);
+    s.build_overlays(frame, scene);
+    const SunShadow sun = s.draw_shadow_map(frame.appearance, scene);
+    s.begin_scene(width, height, frame.appearance.samples);
+    if (frame.appearance.ground) s.draw_ground(pass, scene, sun);
+    s.draw_solid_bodies(pass, sun);
+    s.draw_sky(pass);
+    s.draw_overlays(pass, sun);
+    s.resolve(width, height, target_framebuffer);
     s.timings.total_ms = ms_since(start);
 }
 

@@ -76,6 +76,16 @@ public:
 
 private:
     void start(const World& world);
+    // comparisons() for each closed form: its lines appended to out, `elapsed` seconds since
+    // the measurement started.
+    void compare_spring(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_terminal_velocity(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_friction_slope(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_stability(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_inertia(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_collision(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_quaternion_norm(const World& world, double elapsed, std::vector<Comparison>& out) const;
+    void compare_flip_period(const World& world, double elapsed, std::vector<Comparison>& out) const;
 
     struct Extremum {
         double t, value;
