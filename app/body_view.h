@@ -113,7 +113,8 @@ inline void match_ground(const WorldSettings& settings, render::Appearance& look
 }
 
 // A sphere holding every body as it is now: a soft body's centre of mass and reach when it is
-// alone (as the demo has always framed it), else the bounding spheres of all.
+// alone (as the demo has always framed it), else the bounding spheres of all and the points in
+// the world that springs hang from.
 struct WorldBounds {
     glm::vec3 centre{0.0f};
     float radius = 0.0f;
@@ -148,6 +149,12 @@ inline WorldBounds world_bounds(const World& world) {
             continue;
         }
         for (const Vec3d& v : body.hull->vertices) add(to_glm(m.x + m.R * v), 0.0f);
+    }
+    // A spring's end fixed in the world (the point a ball hangs from): in view with what hangs.
+    for (const Link& link : world.links()) {
+        for (const LinkEnd* end : {&link.a, &link.b}) {
+            if (end->kind == LinkEnd::Kind::World) add(to_glm(end->point), 0.0f);
+        }
     }
     bounds.centre = 0.5f * (low + high);
     bounds.radius = 0.5f * glm::length(high - low);

@@ -43,6 +43,8 @@ void run_script_command(Session& session, View& view, const ScriptCommand& comma
         session.load_mesh_file(args[0]);
     } else if (command.verb == "save_preset") {
         session.save_preset(args[0], args.size() == 2);
+    } else if (command.verb == "export_csv") {
+        session.export_series(args[0], args.size() == 2);
     } else if (command.verb == "reset") {
         session.reset();
     } else if (command.verb == "inspect") {

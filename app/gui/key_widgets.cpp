@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace softbody::app {
@@ -15,16 +16,16 @@ double lowest(const KeyInfo& info) { return info.above ? info.min + std::max(1e-
 double clamp_to_range(const KeyInfo& info, double x) { return std::clamp(x, lowest(info), info.max); }
 
 // The slider's ends: the table's, within the valid range, or the valid range itself.
-void slider_range(const KeyInfo& info, double& lo, double& hi) {
-    lo = info.slider_max > info.slider_min ? info.slider_min : info.min;
-    hi = info.slider_max > info.slider_min ? info.slider_max : info.max;
+void slider_range(const KeyInfo& info, double& lo, double& hi, const SliderSpan& span = {}) {
+    lo = span.min ? *span.min : info.slider_max > info.slider_min ? info.slider_min : info.min;
+    hi = span.max ? *span.max : info.slider_max > info.slider_min ? info.slider_max : info.max;
     lo = clamp_to_range(info, lo);
     hi = clamp_to_range(info, hi);
 }
 
-bool number_slider(const KeyInfo& info, const char* label, double& x) {
+bool number_slider(const KeyInfo& info, const char* label, double& x, const SliderSpan& span) {
     double lo = 0.0, hi = 0.0;
-    slider_range(info, lo, hi);
+    slider_range(info, lo, hi, span);
     if (info.type == KeyType::Whole) {
         int value = int(std::lround(x));
         const bool edited = ImGui::SliderInt(label, &value, int(lo), int(hi), "%d", info.slider_log ? ImGuiSliderFlags_Logarithmic : 0);
@@ -34,8 +35,12 @@ bool number_slider(const KeyInfo& info, const char* label, double& x) {
     float value = float(x);
     // Typed in (ctrl-click or double-click), a value beyond the slider's ends is kept within the valid range.
     const bool edited = ImGui::SliderFloat(label, &value, float(lo), float(hi), "%.4g",
-                                           (info.slider_log ? ImGuiSliderFlags_Logarithmic : 0));
-    if (edited) x = clamp_to_range(info, double(value));
+                                           (info.slider_log && !span.min ? ImGuiSliderFlags_Logarithmic : 0));
+    if (edited) {
+        x = double(value);
+        if (span.step && *span.step > 0.0) x = lo + std::round((x - lo) / *span.step) * *span.step;  // a lesson's steps
+        x = clamp_to_range(info, x);
+    }
     return edited;
 }
 
@@ -46,7 +51,7 @@ bool has_widget(const KeyInfo& info) {
 }
 
 std::string key_label(const KeyInfo& info) {
-    std::string label(info.name);
+    std::string label(info.label.empty() ? info.name : info.label);
     if (!info.unit.empty()) label += " (" + std::string(info.unit) + ")";
     return label;
 }
@@ -56,6 +61,7 @@ void key_tooltip(const KeyInfo& info) {
     ImGui::BeginTooltip();
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
     ImGui::TextUnformatted(std::string(info.meaning).c_str());
+    ImGui::TextDisabled("key: %s", std::string(info.name).c_str());
     if (!info.unit.empty()) ImGui::Text("unit: %s", std::string(info.unit).c_str());
     if (!info.equation.empty()) ImGui::Text("enters: %s", std::string(info.equation).c_str());
     ImGui::Text("valid: %s", key_range_text(info).c_str());
@@ -65,12 +71,17 @@ void key_tooltip(const KeyInfo& info) {
     ImGui::EndTooltip();
 }
 
-bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& shown) {
-    std::string label = shown.empty() ? key_label(info) : shown;
-    if (info.on_reset) label += " *";
-    label += "##" + std::string(info.name);
+bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& shown, const SliderSpan& span) {
+    std::string words = shown.empty() ? key_label(info) : shown;
+    if (info.on_reset) words += " *";
+    // The label on a line of its own above a slider, list or vector (and the box of its word, if
+    // it has one), so that no label is cut short however narrow the panel or large the text; a
+    // true/false box keeps its label beside it.
+    const bool above = info.type != KeyType::Bool;
+    const std::string label = (above ? "" : words) + "##" + std::string(info.name);
     bool edited = false;
     ImGui::PushID(std::string(info.name).c_str());
+    if (above) ImGui::TextUnformatted(words.c_str());
     // A word for 0 ("auto", "all") or for unset ("none", "auto"): a box for it, and the widget
     // for a value when it is off.
     const std::string_view word = info.optional ? info.unset_word : info.zero_word;
@@ -96,18 +107,22 @@ bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& shown) 
             }
         }
         key_tooltip(info);
-        ImGui::SameLine();
         if (box) {
-            ImGui::TextUnformatted(label.substr(0, label.find("##")).c_str());
+            if (!above) {
+                ImGui::SameLine();
+                ImGui::TextUnformatted(words.c_str());
+            }
             ImGui::PopID();
             return edited;
         }
+        ImGui::SameLine();  // the value's widget beside the word's box
     }
+    if (above) ImGui::SetNextItemWidth(-FLT_MIN);
     switch (info.type) {
         case KeyType::Number:
         case KeyType::Whole: {
             double x = std::holds_alternative<double>(value) ? std::get<double>(value) : 0.0;
-            if (number_slider(info, label.c_str(), x)) {
+            if (number_slider(info, label.c_str(), x, span)) {
                 value = x;
                 edited = true;
             }
@@ -129,7 +144,7 @@ bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& shown) 
                 changed = ImGui::ColorEdit3(label.c_str(), xyz, ImGuiColorEditFlags_NoInputs);
             } else {
                 double lo = 0.0, hi = 0.0;
-                slider_range(info, lo, hi);
+                slider_range(info, lo, hi, span);
                 changed = ImGui::DragFloat3(label.c_str(), xyz, info.unit == "deg" ? 1.0f : 0.05f, float(lo), float(hi), "%.2f");
             }
             if (changed) {
@@ -159,6 +174,25 @@ bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& shown) 
     if (ImGui::IsItemClicked(ImGuiMouseButton_Right)) {
         value = default_value(info);
         edited = true;
+    }
+    // Named values (gravity's planets): a button each, on as many lines as the panel needs.
+    for (std::size_t i = 0; i < info.presets.size(); ++i) {
+        const KeyPreset& preset = info.presets[i];
+        const std::string name(preset.name);
+        if (i > 0) {
+            const float next = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize(name.c_str()).x +
+                               2.0f * ImGui::GetStyle().FramePadding.x;
+            if (next < ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+        }
+        const KeyValue preset_value = parse_key_text(info, preset.text);
+        const bool now = key_text(info, preset_value) == key_text(info, value);  // as stored (a float's digits)
+        if (now) ImGui::BeginDisabled();
+        if (ImGui::SmallButton(name.c_str())) {
+            value = preset_value;
+            edited = true;
+        }
+        if (now) ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s = %s", std::string(info.name).c_str(), std::string(preset.text).c_str());
     }
     ImGui::PopID();
     return edited;

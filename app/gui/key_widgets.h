@@ -5,6 +5,7 @@
 // the default. The value travels typed: what the slider holds is what set_key checks.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "physics/keys.h"
@@ -15,9 +16,14 @@ namespace softbody::app {
 // Mesh panel opens files, the mouse pins vertices, rotation stands for the quaternion).
 bool has_widget(const KeyInfo& info);
 
+// A slider's own ends and step, where a lesson gives them (else the key's slider).
+struct SliderSpan {
+    std::optional<double> min, max, step;
+};
+
 // Draws the widget for `value`; true when the user changed it (then `value` holds the new one,
 // within the key's valid range). `label` replaces the key's name on screen when given.
-bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& label = {});
+bool key_widget(const KeyInfo& info, KeyValue& value, const std::string& label = {}, const SliderSpan& span = {});
 
 // The key's tooltip, for the last item drawn.
 void key_tooltip(const KeyInfo& info);

@@ -27,6 +27,10 @@ LessonTool* Panels::lesson() const {
 
 void Panels::draw(Session& session, View& view, float fps) {
     error_banner(session, view);
+    {
+        ToolContext context{session, view, ui, recorder, scale_ * ui.text_size, fps};
+        for (const auto& tool : tools_) tool->draw_view(context);
+    }
     if (show_help) help();
     if (!show_panels) return;
     const ImGuiViewport* viewport = ImGui::GetMainViewport();

@@ -108,9 +108,9 @@ std::vector<ScriptCommand> load_script(const std::string& path) {
         } else if (verb == "load_scene" || verb == "load_mesh") {
             if (args.size() != 1) fail(verb + " needs a path");
             command.verb = verb;
-        } else if (verb == "save_preset") {
+        } else if (verb == "save_preset" || verb == "export_csv") {
             if (args.empty() || args.size() > 2 || (args.size() == 2 && args[1] != "overwrite")) {
-                fail("save_preset needs a path, optionally followed by 'overwrite'");
+                fail(verb + " needs a path, optionally followed by 'overwrite'");
             }
             command.verb = verb;
         } else if (verb == "inspect") {

@@ -10,6 +10,7 @@
 //   80       load_scene assets/scenes/pig.json
 //   81       load_mesh  my.obj
 //   90       save_preset out.json [overwrite]
+//   91       export_csv run.csv [overwrite]   the Graph tool's Export CSV: every tick so far
 //   92       inspect 12                 the inspector on particle 12 of the first soft body (or none)
 //   93       rewind 2.0                 back 2 s on the timeline (paused there; play goes on)
 //   94       step_back                  one tick back

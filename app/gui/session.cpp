@@ -34,6 +34,7 @@ void Session::after_load(const Scene& scene) {
     lesson_ = scene;
     clock_ = FixedClock(scene.settings.dt, max_ticks_per_frame);
     energy_.clear();
+    series_.start(*world_);
     last_collision_.reset();
     compared_.clear();  // a new scene: one world again
     selected_body_ = 0;
@@ -95,6 +96,18 @@ bool Session::save_preset(const std::string& path, bool overwrite) {
     }
 }
 
+bool Session::export_series(const std::string& path, bool overwrite) {
+    try {
+        series_.write_csv(path, overwrite);
+        const Series* series = series_.series();
+        notice_ = "Saved " + path + " (" + std::to_string(series ? series->size() : 0) + " rows, one a tick)";
+        return true;
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        return false;
+    }
+}
+
 void Session::reset() {
     std::vector<CompareSetup> setups;
     for (const ComparedWorld& c : compared_) setups.push_back(c.setup);
@@ -107,6 +120,7 @@ void Session::reset() {
     }
     clock_.reset();
     energy_.clear();
+    series_.start(*world_);
     last_collision_.reset();
     sample_energy();
     history_.start(*world_);
@@ -272,7 +286,7 @@ void Session::toggle_pin(std::size_t body, std::uint32_t particle) {
 
 void Session::set_grab(std::optional<Grab> grab) {
     changed();
-    if (grab && !grab->rigid) selected_body_ = grab->body;  // the body grabbed is the body the Parameters tool edits
+    if (grab && !grab->rigid) selected_body_ = grab->body;  // the body grabbed is the body the All keys tool edits
     world_->set_grab(grab);
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gui/energy_record.h"
+#include "gui/series_record.h"
 #include "physics/clock.h"
 #include "physics/history.h"
 #include "physics/inspect.h"
@@ -78,7 +79,7 @@ public:
     // One key as --set names it: "dt", "stiffness" (every soft body's), NAME.KEY.
     void set_key(const std::string& key, const std::string& value);
     bool reset_pending() const { return world_->reset_pending(); }
-    // The soft body the Parameters tool edits (clicking or grabbing a soft body selects it).
+    // The soft body the All keys tool edits (clicking or grabbing a soft body selects it).
     std::size_t selected_body() const { return selected_body_ < world_->soft_body_count() ? selected_body_ : 0; }
     void select_body(std::size_t body) { selected_body_ = body; }
 
@@ -123,6 +124,10 @@ public:
     World& world() { return *world_; }
     const World& world() const { return *world_; }
     const EnergyRecord& energy() const { return energy_; }
+    // Every tick since the world started (or since a body was made or unmade): the graphs' data.
+    const SeriesRecord& series() const { return series_; }
+    // The series as CSV into `path` (series_record.h); says so in notice(), or why not in error().
+    bool export_series(const std::string& path, bool overwrite);
     const std::optional<LastCollision>& last_collision() const { return last_collision_; }
     const std::string& error() const { return error_; }
     void set_error(std::string message) { error_ = std::move(message); }
@@ -158,6 +163,7 @@ private:
     History history_;
     std::vector<ComparedWorld> compared_;
     EnergyRecord energy_;
+    SeriesRecord series_;
     std::optional<LastCollision> last_collision_;
     std::optional<Inspected> inspected_;
     std::string error_, notice_, source_;

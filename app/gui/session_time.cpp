@@ -40,6 +40,7 @@ void Session::tick_once() {
     history_.after_tick(*world_);
     for (const auto& observe : on_tick) observe(*world_);
     energy_.after_tick(*world_);
+    series_.after_tick(*world_);
     // The compared worlds in lockstep (each replaying its own record when in the past).
     for (ComparedWorld& c : compared_) {
         if (c.world->status() != Status::Ok) continue;
@@ -62,6 +63,7 @@ void Session::go_to_tick(std::uint64_t tick) {
     for (ComparedWorld& c : compared_) c.history.go_to(*c.world, tick);
     // The energy plot and the last collision come back with the world; the plot is cut at now.
     energy_.cut_after(world_->time());
+    series_.cut_after(*world_);
     sample_energy();
     last_collision_.reset();
     clock_.reset();

@@ -39,6 +39,9 @@ public:
     // Once, when the panel is made: a tool that watches every tick says so here.
     virtual void attach(Session&) {}
     virtual void draw(ToolContext& context) = 0;
+    // Every frame, whether its header is open or not, before the panel: what it draws over the
+    // 3D view (the Measure tool's ruler and lines).
+    virtual void draw_view(ToolContext&) {}
 };
 
 using ToolMaker = std::unique_ptr<Tool> (*)();

@@ -10,4 +10,11 @@ void EnergyLedger::observe(World& world) {
     started_ = true;
 }
 
+void EnergyLedger::resume(World& world, double dissipated) {
+    energy_ = world.energy();
+    dissipated_ = dissipated;
+    changes_ = world.outside_changes();
+    started_ = true;
+}
+
 }  // namespace softbody

@@ -1,11 +1,5 @@
 #include "physics/scene_io.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -142,10 +136,6 @@ void fit_unless_given(const json& keys, SoftBodyDef& def) {
     fit_brought_mesh(fitted);
     if (!keys.contains("scale")) def.scale = fitted.scale;
     if (!keys.contains("rotation") && !keys.contains("up_axis")) def.up_axis = fitted.up_axis;
-}
-
-[[noreturn]] void io_error(const std::string& path, const std::string& what) {
-    throw InputError(path + ": " + what + " (" + std::strerror(errno) + ")");
 }
 
 
@@ -312,6 +302,53 @@ LessonExpect parse_expect(const json& value, const std::string& where) {
     return expect;
 }
 
+// "controls": each a key the scene has (as --set names it), with a range inside the key's.
+std::vector<LessonControl> parse_controls(const json& list, const Scene& scene, const std::string& where) {
+    std::vector<LessonControl> out;
+    const ThingNames names = thing_names(scene);
+    for (const json& item : list) {
+        const std::string what = where + ": key 'controls'";
+        if (!item.is_object() || !item.contains("key") || !item["key"].is_string()) {
+            throw InputError(what + ": each control must be an object with a \"key\" (as --set names it)");
+        }
+        LessonControl control;
+        control.key = item["key"].get<std::string>();
+        const KeyInfo* info = nullptr;
+        try {
+            info = resolve_key(control.key, names).front().info;
+        } catch (const InputError& e) {
+            throw InputError(what + ": " + e.what());
+        }
+        for (const auto& [field, value] : item.items()) {
+            if (field == "key") continue;
+            if (field == "label" || field == "unit") {
+                if (!value.is_string()) throw InputError(what + ": '" + control.key + "': \"" + field + "\" must be a string");
+                (field == "label" ? control.label : control.unit) = value.get<std::string>();
+            } else if (field == "min" || field == "max" || field == "step") {
+                if (!value.is_number()) throw InputError(what + ": '" + control.key + "': \"" + field + "\" must be a number");
+                (field == "min" ? control.min : field == "max" ? control.max : control.step) = value.get<double>();
+            } else {
+                throw InputError(what + ": '" + control.key + "': unknown field '" + printable(field) + "' (key, label, unit, min, max, step)");
+            }
+        }
+        if (info->type != KeyType::Number && info->type != KeyType::Whole && info->type != KeyType::Vec3 && info->type != KeyType::Bool &&
+            info->type != KeyType::Word) {
+            throw InputError(what + ": '" + control.key + "' has no slider (a number, a vector, true/false or a word)");
+        }
+        const auto inside = [&](const std::optional<double>& x) {
+            return !x || (*x <= info->max && (info->above ? *x > info->min : *x >= info->min));
+        };
+        if (!inside(control.min) || !inside(control.max) || (control.min && control.max && !(*control.min < *control.max)) ||
+            (control.step && !(*control.step > 0.0))) {
+            throw InputError(what + ": '" + control.key + "': min < max, both " + key_range_text(*info) + ", and a step above 0");
+        }
+        if (control.label.empty()) control.label = info->label.empty() ? control.key : std::string(info->label);
+        if (control.unit.empty()) control.unit = std::string(info->unit);
+        out.push_back(std::move(control));
+    }
+    return out;
+}
+
 // The bodies "expect" names exist, of the kind its closed form reads.
 void check_expect_names(const Scene& scene, const std::string& where) {
     const LessonExpect& expect = *scene.expect;
@@ -377,10 +414,14 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
             continue;
         }
         // A lesson's words and its closed form: for the reader and the lesson meter, not the physics.
-        if (key == "title" || key == "text") {
+        if (key == "title" || key == "text" || key == "notes") {
             if (!value.is_string()) throw InputError(where(origin, text, key) + ": key '" + key + "': expected a string, got " + type_name(value));
-            (key == "title" ? scene.title : scene.text) = value.get<std::string>();
+            (key == "title" ? scene.title : key == "text" ? scene.text : scene.notes) = value.get<std::string>();
             continue;
+        }
+        if (key == "controls") {
+            if (!value.is_array()) throw InputError(where(origin, text, key) + ": key 'controls': expected an array, got " + type_name(value));
+            continue;  // read once the things they name are known
         }
         if (key == "expect") {
             scene.expect = parse_expect(value, where(origin, text, key));
@@ -453,6 +494,7 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
                          "' (the soft body of the old flat keys is 'body'); names must be unique");
     }
     if (scene.expect) check_expect_names(scene, where(origin, text, "expect"));
+    if (root.contains("controls")) scene.controls = parse_controls(root["controls"], scene, where(origin, text, "controls"));
     return scene;
 }
 
@@ -567,6 +609,18 @@ std::string scene_to_json(const Scene& scene) {
         root["springs"] = list;
     }
     if (!scene.title.empty()) root["title"] = scene.title;
+    if (!scene.notes.empty()) root["notes"] = scene.notes;
+    if (!scene.controls.empty()) {
+        json list = json::array();
+        for (const LessonControl& c : scene.controls) {
+            json item = {{"key", c.key}, {"label", c.label}, {"unit", c.unit}};
+            if (c.min) item["min"] = *c.min;
+            if (c.max) item["max"] = *c.max;
+            if (c.step) item["step"] = *c.step;
+            list.push_back(item);
+        }
+        root["controls"] = list;
+    }
     if (!scene.text.empty()) root["text"] = scene.text;
     if (scene.expect) {
         json expect = {{"kind", scene.expect->kind}, {"body", scene.expect->body}};
@@ -587,12 +641,6 @@ void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite
     const fs::path target(path);
     fs::path folder = target.parent_path();
     if (folder.empty()) folder = ".";
-    std::error_code ec;
-    if (fs::is_directory(target, ec)) throw InputError(path + ": is a folder; choose a file name");
-    if (overwrite == Overwrite::No && fs::exists(fs::symlink_status(target, ec))) {
-        throw InputError(path + ": already exists; not overwriting it");
-    }
-
     // Store mesh paths relative to the scene's folder, so a folder of presets can move.
     Scene saved = scene;
     const auto relative = [&](std::string& mesh) {
@@ -605,63 +653,7 @@ void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite
     for (RigidBodyDef& body : saved.rigid_bodies) relative(body.mesh);
     const std::string text = scene_to_json(saved);  // before anything touches the disk
 
-    // A replaced file keeps its permissions; a new one is readable by all, writable by its owner.
-    mode_t mode = 0644;
-    if (struct stat old {}; ::stat(path.c_str(), &old) == 0 && S_ISREG(old.st_mode)) mode = old.st_mode & 07777;
-
-    // The temporary file sits beside the target (a rename cannot cross file systems), hidden,
-    // named after it (cut short, so that a long name still leaves room for the suffix).
-    std::string temp_name(".");
-    temp_name.append(target.filename().string().substr(0, 200)).append(".XXXXXX");
-    std::string temp = (folder / temp_name).string();
-    const int fd = ::mkstemp(temp.data());
-    if (fd < 0) io_error(path, "cannot create a temporary file beside it");
-    auto fail = [&](const char* what) {
-        const int saved_errno = errno;
-        ::close(fd);
-        ::unlink(temp.c_str());
-        errno = saved_errno;
-        io_error(path, what);
-    };
-    // A short write (a full disk, a file size limit) ends in an error, never in a shorter file.
-    std::size_t written = 0;
-    while (written < text.size()) {
-        const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            fail("cannot write");
-        }
-        written += static_cast<std::size_t>(n);
-    }
-    if (::fchmod(fd, mode) != 0) fail("cannot set permissions");
-    if (::fsync(fd) != 0) fail("cannot flush to disk");
-    if (::close(fd) != 0) {
-        const int saved_errno = errno;
-        ::unlink(temp.c_str());
-        errno = saved_errno;
-        io_error(path, "cannot close");
-    }
-    if (overwrite == Overwrite::No) {
-        // link() refuses to replace an existing name: no window for a race to clobber a file.
-        if (::link(temp.c_str(), path.c_str()) != 0) {
-            const int saved_errno = errno;
-            ::unlink(temp.c_str());
-            errno = saved_errno;
-            if (errno == EEXIST) throw InputError(path + ": already exists; not overwriting it");
-            io_error(path, "cannot save");
-        }
-        ::unlink(temp.c_str());
-    } else if (::rename(temp.c_str(), path.c_str()) != 0) {
-        const int saved_errno = errno;
-        ::unlink(temp.c_str());
-        errno = saved_errno;
-        io_error(path, "cannot save");
-    }
-    // Make the new name itself durable (best effort: the file is in place either way).
-    if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
-        ::fsync(dir);
-        ::close(dir);
-    }
+    write_text_file(path, text, overwrite);
 }
 
 }  // namespace softbody

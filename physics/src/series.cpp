@@ -1,6 +1,8 @@
 #include "physics/series.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 
@@ -96,6 +98,20 @@ void Series::clear() {
     for (auto& column : data_) column.clear();
     ticks_.clear();
     dts_.clear();
+}
+
+void Series::keep_first(std::size_t rows) {
+    if (rows >= size()) return;
+    for (auto& column : data_) column.resize(rows);
+    ticks_.resize(rows);
+    dts_.resize(rows);
+}
+
+void Series::drop_first(std::size_t rows) {
+    rows = std::min(rows, size());
+    for (auto& column : data_) column.erase(column.begin(), column.begin() + std::ptrdiff_t(rows));
+    ticks_.erase(ticks_.begin(), ticks_.begin() + std::ptrdiff_t(rows));
+    dts_.erase(dts_.begin(), dts_.begin() + std::ptrdiff_t(rows));
 }
 
 void Series::record(const World& world, const EnergyLedger& ledger) {

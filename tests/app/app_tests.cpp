@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -327,6 +328,35 @@ TEST(App, PresetIsSavedAndLoadedBackAndNeverOverwritten) {
     EXPECT_FLOAT_EQ(nlohmann::json::parse(unchanged)["soft_bodies"][0]["stiffness"].get<float>(), 42.0f);
 }
 
+std::string read_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The Graph panel's Export CSV (the script's export_csv) holds a row for the start and every
+// tick the window ran: the same bytes as `softbody simulate --series` gives for the same scene
+// and ticks, one record of the physics however it is run. A second export to the same file is
+// refused and leaves the first as it was.
+TEST(App, ExportedCsvIsTheSimulatedSeriesOfTheSameTicks) {
+    const fs::path window_csv = scratch() / "window.csv", simulated_csv = scratch() / "simulated.csv";
+    fs::remove(window_csv);
+    fs::remove(simulated_csv);
+    const std::string scene = std::string(SOFTBODY_ASSETS) + "/scenes/damper.json";
+    const fs::path script = write_script("export.script", "30 export_csv " + window_csv.string() + "\n"
+                                                          "34 export_csv " + window_csv.string() + "\n");
+    const Result r = run_app("--scene " + quote(scene) + " --size 480x300 --frames 36 --frame-time 0.02 --script " + quote(script.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.summary["error"].get<std::string>().find("already exists"), std::string::npos) << r.out;
+    const std::string window = read_bytes(window_csv);
+    const auto rows = std::count(window.begin(), window.end(), '\n') - 1;  // less the header
+    ASSERT_GE(rows, 25) << window;
+    EXPECT_NE(window.find("time (s),kinetic (J),gravitational (J),elastic (J),dissipated (J),total (J),bob x (m)"), std::string::npos);
+    const std::string command = std::string(SOFTBODY_EXE) + " simulate --scene " + quote(scene) + " --ticks " +
+                                std::to_string(rows - 1) + " --series " + quote(simulated_csv.string()) + " > /dev/null";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    EXPECT_EQ(window, read_bytes(simulated_csv));
+}
+
 TEST(App, BadMeshPathShowsAnErrorAndKeepsRunning) {
     const fs::path shot = scratch() / "bad_mesh.png";
     const Result r = run_app("--mesh /no/such/mesh.obj --frames 20 --screenshot " + quote(shot.string()));
@@ -417,6 +447,26 @@ TEST(App, EachLessonOpensInOrderAndTheSpringKeepsItsPeriod) {
     ASSERT_TRUE(period["measured"].is_number()) << r.out;
     EXPECT_NEAR(period["measured"].get<double>(), period["predicted"].get<double>(), 0.01 * period["predicted"].get<double>());
     EXPECT_EQ(period["agrees"], true);
+    // The lesson's own controls come first: the spring constant k, in plain words with its unit,
+    // where the panel draws it. Setting it changes what is predicted and what is measured.
+    const Result wide = run_app("--size 1000x700 --frames 3 --script " + quote(script.string()));  // the panel open
+    ASSERT_EQ(wide.exit_code, 0) << wide.err;
+    const auto& controls = wide.summary["lesson"]["controls"];
+    ASSERT_FALSE(controls.empty()) << r.out;
+    EXPECT_EQ(controls[0]["key"], "spring.stiffness");
+    EXPECT_EQ(controls[0]["label"], "spring constant k (N/m)");
+    EXPECT_EQ(controls[0]["value"], "40");
+    const auto& rect = controls[0]["rect"];
+    EXPECT_GT(rect[2].get<double>(), 0.05) << "the slider has a width on screen";
+    EXPECT_LT(rect[0].get<double>() + rect[2].get<double>(), 0.6) << "inside the panel, on the left";
+    const fs::path stiffer = write_script("stiffer.script", "1 lesson 1\n2 set spring.stiffness 160\n3 reset\n");
+    const Result k = run_app("--size 1000x700 --frames 70 --frame-time 0.1 --script " + quote(stiffer.string()));
+    ASSERT_EQ(k.exit_code, 0) << k.err;
+    EXPECT_EQ(k.summary["lesson"]["controls"][0]["value"], "160");
+    const auto& shorter = k.summary["lesson"]["comparisons"][0];
+    EXPECT_NEAR(shorter["predicted"].get<double>(), 2.0 * 3.14159265358979 * std::sqrt(1.0 / 160.0), 1e-9);
+    ASSERT_TRUE(shorter["measured"].is_number()) << k.out;
+    EXPECT_NEAR(shorter["measured"].get<double>(), shorter["predicted"].get<double>(), 0.01 * shorter["predicted"].get<double>());
     // A lesson that does not exist: an error, not an exit.
     const fs::path none = write_script("no_lesson.script", "1 lesson 99\n");
     const Result missing = run_app("--frames 5 --script " + quote(none.string()));

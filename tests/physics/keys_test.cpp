@@ -61,7 +61,27 @@ TEST(Keys, EveryKeyIsDescribedAndItsDefaultIsValid) {
             EXPECT_GE(info.slider_min, info.min) << what;
             EXPECT_LE(info.slider_max, info.max) << what;
         }
+        // A plain-words label for the panel (not the key's name again), and presets that are valid values.
+        if (!info.alias) {
+            EXPECT_FALSE(info.label.empty()) << what;
+            EXPECT_NE(info.label, info.name) << what;
+        }
+        for (const KeyPreset& preset : info.presets) {
+            EXPECT_NO_THROW(check_key(info, parse_key_text(info, preset.text))) << what << " preset " << preset.name;
+        }
     }
+    // Gravity's presets are the surfaces' gravity, down.
+    const KeyInfo& gravity = *find_key(KeyOwner::World, "gravity");
+    ASSERT_FALSE(gravity.presets.empty());
+    const auto down = [&](std::string_view name) {
+        for (const KeyPreset& p : gravity.presets) {
+            if (p.name == name) return -std::get<Vec3d>(parse_key_text(gravity, p.text)).z;
+        }
+        return 0.0;
+    };
+    EXPECT_NEAR(down("Earth"), 9.81, 1e-5);  // as floats hold them
+    EXPECT_NEAR(down("Moon"), 1.62, 1e-5);
+    EXPECT_NEAR(down("Jupiter"), 24.79, 1e-5);
     for (KeyOwner owner : {KeyOwner::World, KeyOwner::SoftBody, KeyOwner::RigidBody, KeyOwner::Spring}) {
         EXPECT_FALSE(keys_of(owner).empty());
     }

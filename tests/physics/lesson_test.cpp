@@ -90,6 +90,8 @@ TEST(Lessons, TitleTextAndExpectLeaveThePhysicsAloneAndRoundTrip) {
         bare.title.clear();
         bare.text.clear();
         bare.expect.reset();
+        bare.notes.clear();
+        bare.controls.clear();
         World with((scene)), without((bare));
         with.run(100);
         without.run(100);
@@ -99,6 +101,8 @@ TEST(Lessons, TitleTextAndExpectLeaveThePhysicsAloneAndRoundTrip) {
         EXPECT_EQ(again.title, scene.title) << lesson.file;
         EXPECT_EQ(again.text, scene.text) << lesson.file;
         EXPECT_EQ(again.expect, scene.expect) << lesson.file;
+        EXPECT_EQ(again.notes, scene.notes) << lesson.file;
+        EXPECT_EQ(again.controls, scene.controls) << lesson.file;
     }
     TempDir dir;
     const Scene spring = load_scene(scene_path("spring.json"));
@@ -130,6 +134,14 @@ TEST(Lessons, BadNewKeysNameFileLineAndKey) {
          "bad.json:2: key 'expect'", "takes no \"slope\""},
         {"{\"rigid_bodies\": [{\"name\": \"b\", \"shape\": \"sphere\", \"radius\": 0.1}],\n\"expect\": {\"kind\": \"friction_slope\", \"body\": \"b\"}}",
          "bad.json:2: key 'expect'", "must be a soft body"},
+        {"{\n\"notes\": 1\n}", "bad.json:2: key 'notes'", "expected a string"},
+        {"{\n\"controls\": {\"key\": \"gravity\"}\n}", "bad.json:2: key 'controls'", "expected an array"},
+        {"{\n\"controls\": [\"gravity\"]\n}", "bad.json:2: key 'controls'", "an object with a \"key\""},
+        {"{\n\"controls\": [{\"key\": \"spring.stiffness\"}]\n}", "bad.json:2: key 'controls'", "spring.stiffness"},
+        {"{\n\"controls\": [{\"key\": \"gravity\", \"colour\": 1}]\n}", "bad.json:2: key 'controls'", "unknown field 'colour'"},
+        {"{\n\"controls\": [{\"key\": \"restitution\", \"min\": 0.5, \"max\": 0.2}]\n}", "bad.json:2: key 'controls'", "min < max"},
+        {"{\n\"controls\": [{\"key\": \"restitution\", \"max\": 3}]\n}", "bad.json:2: key 'controls'", "min < max"},
+        {"{\n\"controls\": [{\"key\": \"restitution\", \"label\": 2}]\n}", "bad.json:2: key 'controls'", "must be a string"},
     };
     for (const Case& c : cases) {
         try {
@@ -142,6 +154,31 @@ TEST(Lessons, BadNewKeysNameFileLineAndKey) {
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
         }
     }
+}
+
+// The lessons about one quantity offer it first: each control names a key the scene has, in
+// plain words, with the key's unit, and a range inside the key's own.
+TEST(Lessons, TheirControlsNameKeysTheSceneHasWithinTheKeysRanges) {
+    std::size_t with_controls = 0;
+    for (const LessonInfo& lesson : lessons()) {
+        const Scene scene = load_scene(scene_path(lesson.file));
+        if (scene.controls.empty()) continue;
+        ++with_controls;
+        EXPECT_FALSE(scene.notes.empty()) << lesson.file << ": controls without a note for the teacher";
+        World world((scene));
+        for (const LessonControl& control : scene.controls) {
+            const std::vector<KeyTarget> targets = resolve_key(control.key, thing_names(world.def()));
+            ASSERT_EQ(targets.size(), 1u) << lesson.file << ": " << control.key;
+            EXPECT_NE(control.label, control.key) << lesson.file << ": " << control.key << " has no plain-words label";
+            EXPECT_EQ(control.unit, targets.front().info->unit) << lesson.file << ": " << control.key;
+            (void)world.key(control.key);  // readable from the running world
+        }
+    }
+    // The spring lesson's first control is its spring's k, as the lesson's text says.
+    const Scene spring = load_scene(scene_path("spring.json"));
+    ASSERT_FALSE(spring.controls.empty());
+    EXPECT_EQ(spring.controls.front().key, "spring.stiffness");
+    EXPECT_GE(with_controls, 8u);
 }
 
 // --- Expected against actual -------------------------------------------------------------------

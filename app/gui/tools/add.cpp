@@ -42,7 +42,7 @@ public:
             ImGui::SameLine();
             if (ImGui::Button("Add mesh")) add(Session::AddKind::MeshFile, meshes_[mesh_]);
         }
-        // Taking out: the soft body the Parameters tool edits, or the rigid body inspected.
+        // Taking out: the soft body the All keys tool edits, or the rigid body inspected.
         const World& world = c.session.world();
         if (const auto rigid = c.session.rigid_inspection()) {
             const std::string label = "Remove '" + world.rigid_body(rigid->body).name + "'";

@@ -1,4 +1,6 @@
-// The Parameters tool.
+// The All keys tool: every key of the world, the selected soft body and each named spring,
+// from the table (physics/keys.h), each in plain words with its unit; a lesson's own controls
+// come first, in the Lesson tool. A key that changes nothing in the open world is not shown.
 #include <imgui.h>
 
 #include <algorithm>
@@ -15,12 +17,26 @@ namespace softbody::app {
 
 namespace {
 
-class ParametersTool : public Tool {
+class AllKeysTool : public Tool {
 public:
-    const char* title() const override { return "Parameters"; }
+    const char* title() const override { return "All keys"; }
     void draw(ToolContext& c) override { parameters_body(c); }
 
 private:
+    // Whether a world key can change anything in this world: the air only with drag on some
+    // body, the quaternions' renormalising and sleeping only with rigid bodies that move.
+    static bool matters(const KeyInfo& info, const World& world) {
+        bool moving_rigid = false, drag = false;
+        for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
+            moving_rigid = moving_rigid || !world.rigid_body(b).fixed;
+            drag = drag || world.rigid_body(b).drag_coefficient > 0.0f;
+        }
+        for (std::size_t b = 0; b < world.soft_body_count(); ++b) drag = drag || world.soft_body(b).def.drag_coefficient > 0.0f;
+        if (info.name == "air_density") return drag;
+        if (info.name == "renormalize_every" || info.name == "sleeping") return moving_rigid;
+        return true;
+    }
+
     // Every key with a widget, from the table (keys.h): the world's, the selected soft body's, and
     // each named spring's. A widget hands its typed value to the definition's setter, checked once.
     void parameters_body(ToolContext& c) {
@@ -28,7 +44,7 @@ private:
         ImGui::TextDisabled("World");
         WorldSettings settings = world.settings();
         for (const KeyInfo* info : keys_of(KeyOwner::World)) {
-            if (!has_widget(*info)) continue;
+            if (!has_widget(*info) || !matters(*info, world)) continue;
             KeyValue value = get_key(settings, *info);
             if (key_widget(*info, value)) {
                 set_key(settings, *info, value);
@@ -92,7 +108,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{90, [] { return std::unique_ptr<Tool>(new ParametersTool); }};
+const ToolRegistration kRegistered{90, [] { return std::unique_ptr<Tool>(new AllKeysTool); }};
 
 }  // namespace
 

@@ -33,7 +33,7 @@ private:
         if (!c.session.comparing()) {
             ImGui::TextWrapped("The scene again from t = 0, beside copies of itself stepped by other integrators.");
             swatch(main);
-            ImGui::Text("%s (this world's; Parameters)", std::string(to_string(main)).c_str());
+            ImGui::Text("%s (this world's; All keys)", std::string(to_string(main)).c_str());
             std::vector<CompareSetup> others;
             for (int k = 0; k < 4; ++k) {
                 if (kAll[k] == main) continue;

@@ -58,7 +58,7 @@ private:
             ImGui::SetTooltip(
                 "Rigid bodies that sleep drawn greyer: an island of bodies at rest for half a second sleeps (it is\n"
                 "not integrated and its contacts are not solved) until something touches it, you grab it or a\n"
-                "key changes. The sleeping key (Parameters) turns sleeping off.");
+                "key changes. The sleeping key (All keys) turns sleeping off.");
         }
         ImGui::Checkbox("ground and grid", &a.ground);
         ImGui::SameLine(180 * c.scale);

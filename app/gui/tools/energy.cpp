@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gui/plot.h"
 #include "gui/session.h"
 #include "gui/tool.h"
 #include "gui/view.h"
@@ -38,51 +39,36 @@ private:
                    : series == 4 ? s.rotational
                                  : s.contacts;
         };
-        double lo = 1e300, hi = -1e300;
+        // One line per energy, each in its own colour and marked with its own shape (gui/plot.h).
+        std::vector<double> times;
+        std::vector<std::vector<double>> values(static_cast<std::size_t>(series_count));
         for (const auto& s : history) {
-            for (int series = 0; series < series_count; ++series) {
-                lo = std::min(lo, value_of(s, series));
-                hi = std::max(hi, value_of(s, series));
-            }
+            times.push_back(s.time);
+            for (int series = 0; series < series_count; ++series) values[std::size_t(series)].push_back(value_of(s, series));
         }
-        if (hi - lo < 1e-9) hi = lo + 1.0;
-        const ImVec2 size(ImGui::GetContentRegionAvail().x, 120 * c.scale);
-        const ImVec2 origin = ImGui::GetCursorScreenPos();
-        ImDrawList* draw = ImGui::GetWindowDrawList();
-        draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(20, 24, 30, 255), 4.0f);
-        const double t0 = history.front().time, t1 = std::max(history.back().time, t0 + 1e-6);
-        const ImU32 colours[6] = {IM_COL32(90, 170, 255, 255),  IM_COL32(120, 220, 120, 255), IM_COL32(255, 170, 60, 255),
-                                  IM_COL32(240, 240, 240, 255), IM_COL32(250, 200, 30, 255),  IM_COL32(240, 90, 90, 255)};
-        for (int series = 0; series < series_count; ++series) {
-            std::vector<ImVec2> points;
-            points.reserve(history.size());
-            for (const auto& s : history) {
-                const double v = value_of(s, series);
-                points.emplace_back(origin.x + float((s.time - t0) / (t1 - t0)) * size.x,
-                                    origin.y + size.y - float((v - lo) / (hi - lo)) * size.y);
-            }
-            draw->AddPolyline(points.data(), static_cast<int>(points.size()), colours[series], 0, series == 3 ? 2.0f : 1.5f);
+        const char* line_names[6] = {"kinetic", "gravity", "elastic", "total", "rotational", "contacts, last second"};
+        std::vector<PlotLine> lines;
+        for (int series = 0; series < std::min(series_count, 5); ++series) {
+            lines.push_back({line_names[series], &times, &values[std::size_t(series)], 0, std::size_t(series)});
         }
-        ImGui::Dummy(size);
-        const char* names[5] = {"kinetic", "gravity", "elastic", "total", "rotational"};
+        plot("energy", lines, "time (s)", "energy (J)", 120.0f * c.scale);
         const auto& last = history.back();
         for (int series = 0; series < std::min(series_count, 5); ++series) {
             if (series % 2) ImGui::SameLine(180 * c.scale);
-            ImGui::TextColored(ImColor(colours[series]), "%s %.3g J", names[series], value_of(last, series));
+            ImGui::Text("%s %.3g J", line_names[series], value_of(last, series));
         }
         if (rotation) {
             ImGui::SameLine(180 * c.scale);
             ImGui::Text("|L| %.3g kg m^2/s", last.angular_momentum);
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("Total angular momentum about the origin, every body: conserved without torques.");
-            ImGui::TextColored(ImColor(colours[5]), "contacts: %+.3g J this second", last.contacts);
+            ImGui::Text("contacts: %+.3g J this second", last.contacts);
             if (ImGui::IsItemHovered()) {
                 ImGui::SetTooltip(
                     "What the rigid contacts' impulses (Eq. 38) did to the energy over the last second: never more\n"
                     "than zero. A bounce with e < 1 and friction take energy; a body resting on another, none.");
             }
         }
-        ImGui::TextDisabled("last %.0f s, from %.1f to %.1f J", t1 - t0, lo, hi);
         if (c.session.comparing()) energy_by_integrator_body(c);
     }
 

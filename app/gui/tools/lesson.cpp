@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "cli.h"
+#include "gui/key_widgets.h"
 #include "gui/session.h"
 #include "physics/scene_io.h"
 
@@ -75,6 +76,7 @@ void LessonTool::follow(const Session& session) {
 void LessonTool::draw(ToolContext& context) {
     Session& session = context.session;
     const float scale = context.scale;
+    shown_.clear();  // drawn again below, or not shown this frame
     follow(session);
     const bool lesson = !title_.empty();
     // The Lessons menu, in the addendum's order.
@@ -100,6 +102,14 @@ void LessonTool::draw(ToolContext& context) {
     ImGui::TextUnformatted(text_.c_str());
     ImGui::PopTextWrapPos();
     if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", error_.c_str());
+    controls(session);
+    const std::string& notes = session.lesson().notes;
+    if (!notes.empty() && ImGui::TreeNode("For the teacher")) {
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(notes.c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::TreePop();
+    }
     if (!meter_) return;
 
     // Expected against actual, live.
@@ -135,6 +145,34 @@ void LessonTool::draw(ToolContext& context) {
     }
 }
 
+// The keys the lesson is about, first and in its own words; every other key is under All keys.
+void LessonTool::controls(Session& session) {
+    const std::vector<LessonControl>& list = session.lesson().controls;
+    if (list.empty()) return;
+    ImGui::Separator();
+    for (const LessonControl& control : list) {
+        try {
+            const ThingNames names = thing_names(session.world().def());
+            const KeyInfo& info = *resolve_key(control.key, names).front().info;
+            KeyValue value = session.world().key(control.key);
+            const std::string label = control.unit.empty() ? control.label : control.label + " (" + control.unit + ")";
+            if (key_widget(info, value, label, SliderSpan{control.min, control.max, control.step})) {
+                session.set_key(control.key, key_text(info, value));
+            }
+            const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax(), size = ImGui::GetIO().DisplaySize;
+            shown_.push_back({control.key, label, key_text(info, value), lo.x / size.x, lo.y / size.y, (hi.x - lo.x) / size.x,
+                              (hi.y - lo.y) / size.y});
+        } catch (const std::exception&) {
+            // A control naming a body taken out of the world: nothing to show for it now.
+        }
+    }
+    if (session.reset_pending()) {
+        ImGui::TextDisabled("* applies on reset");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Reset now##lesson")) session.reset();
+    }
+}
+
 nlohmann::ordered_json LessonTool::summary(const Session& session) {
     follow(session);
     if (title_.empty()) return nullptr;
@@ -154,6 +192,11 @@ nlohmann::ordered_json LessonTool::summary(const Session& session) {
                             {"agrees", c.agrees ? nlohmann::ordered_json(*c.agrees) : nlohmann::ordered_json()}});
         }
     }
+    nlohmann::ordered_json controls = nlohmann::ordered_json::array();
+    for (const ShownControl& c : shown_) {
+        controls.push_back({{"key", c.key}, {"label", c.label}, {"value", c.value}, {"rect", {c.x, c.y, c.w, c.h}}});
+    }
+    out["controls"] = controls;
     out["comparisons"] = list;
     return out;
 }

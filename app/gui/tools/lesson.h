@@ -29,11 +29,13 @@ public:
     void attach(Session& session) override;
     // The Lessons menu and, when the scene is a lesson, its title, text and comparisons.
     void draw(ToolContext& context) override;
-    // The lesson on show for a run's summary (number, title, comparisons); null when none.
+    // The lesson on show for a run's summary (number, title, its controls as last drawn: key,
+    // label, value and where on the window, comparisons); null when none.
     nlohmann::ordered_json summary(const Session& session);
 
 private:
     void follow(const Session& session);  // a new world or scene: its title, text and a new meter
+    void controls(Session& session);      // the lesson's own controls
 
     std::vector<std::string> titles_;  // each lesson's, for the menu
     const void* world_ = nullptr;      // the world the meter watches (identity only)
@@ -42,6 +44,11 @@ private:
     std::size_t number_ = 0;           // the lesson on show, 0: none
     std::optional<LessonMeter> meter_;
     std::string error_;                // why the meter could not be made
+    struct ShownControl {
+        std::string key, label, value;
+        float x = 0, y = 0, w = 0, h = 0;  // the widget, in fractions of the window
+    };
+    std::vector<ShownControl> shown_;  // the controls as the last frame drew them
 };
 
 }  // namespace softbody::app

@@ -59,7 +59,7 @@ private:
             if (ImGui::IsItemHovered()) {
                 ImGui::SetTooltip(
                     "A mesh opened or dropped without a scene is sized so its largest side is 1 m and stood\n"
-                    "up (+y up, as most exporters write). Parameters: scale, up_axis (both on reset).");
+                    "up (+y up, as most exporters write). All keys: scale, up_axis (both on reset).");
             }
             ImGui::Text("%zu triangles, %zu springs + dampers", mesh.triangle_count(), body.spring_count());
             ImGui::Text("memory %s", memory_text(body.particle_count()).c_str());

@@ -20,6 +20,9 @@ class EnergyLedger {
 public:
     // After every tick, and once before the first: the world's energies now.
     void observe(World& world);
+    // Goes on from the world as it is now with `dissipated` taken so far: after time travel
+    // back to a tick whose running total was recorded.
+    void resume(World& world, double dissipated);
 
     const Energy& energy() const { return energy_; }   // at the last observe
     double dissipated() const { return dissipated_; }  // J, since the first observe

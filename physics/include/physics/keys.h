@@ -38,8 +38,14 @@ enum class KeyType {
 // A key's value. std::monostate: unset (an optional key left out: "none" as text).
 using KeyValue = std::variant<std::monostate, double, bool, Vec3d, Quat, std::string, std::vector<std::uint32_t>>;
 
+// A value a key is often given, by name: "Moon" for gravity 0,0,-1.62. Its text as --set takes it.
+struct KeyPreset {
+    std::string_view name, text;
+};
+
 struct KeyInfo {
     std::string_view name{};
+    std::string_view label{};    // in plain words, for a slider: "Spring constant k"
     KeyOwner owner = KeyOwner::World;
     KeyType type = KeyType::Number;
     std::string_view unit{};       // "" when it has none
@@ -52,6 +58,7 @@ struct KeyInfo {
     std::string_view unset_word{}; // the text for unset: "none", "auto"
     std::string_view zero_word{};  // a word that stands for 0, outside the range: "auto", "all"
     std::span<const std::string_view> choices{};  // a Word's words
+    std::span<const KeyPreset> presets{};         // named values the app offers beside its widget
     double slider_min = 0.0, slider_max = 0.0;  // the app's slider (0, 0: no slider)
     bool slider_log = false;                    // a slider over decades (stiffness, mass)
     bool single = false;         // held as float: text and files keep 9 digits

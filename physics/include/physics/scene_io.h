@@ -5,7 +5,10 @@
 //   - "springs": [ { "name": ..., "a": END, "b": END, "stiffness": k, "damping": c, "rest_length": l0 } ]
 //     with END { "body": NAME, "point": [x, y, z] }, { "body": NAME, "vertex": K } or
 //     { "point": [x, y, z] } (fixed in the world); the name is optional;
-//   - "title", "text": a lesson's name and what it shows (lesson.h); the physics never reads them;
+//   - "title", "text", "notes": a lesson's name, what it shows and a note for the teacher
+//     (lesson.h); the physics never reads them;
+//   - "controls": [ { "key": "spring.stiffness", "label": ..., "unit": ..., "min": ..., "max": ...,
+//     "step": ... } ]: the keys a lesson is about, shown first in plain words;
 //   - "expect": { "kind": CLOSED_FORM, "body": NAME, "slope": NAME }: what a lesson compares
 //     with a closed form (lesson.h lists the kinds and what each needs).
 // Names are unique across bodies and springs.
@@ -21,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "physics/file_output.h"
 #include "physics/defs.h"
 #include "physics/keys.h"
 
@@ -35,10 +39,22 @@ struct LessonExpect {
     bool operator==(const LessonExpect&) const = default;
 };
 
+// A control a lesson offers first, in plain words: one key (as --set names it), with its label,
+// unit and the range and step its slider moves over (each within the key's valid range).
+struct LessonControl {
+    std::string key;    // "spring.stiffness", "gravity", "bob.mass"
+    std::string label;  // "spring constant k" (default: the key)
+    std::string unit;   // default: the key's
+    std::optional<double> min, max, step;  // default: the key's slider
+    bool operator==(const LessonControl&) const = default;
+};
+
 // A world as a file describes it, and a lesson's words.
 struct Scene : WorldDef {
     std::string title, text;              // a lesson's title and its short text (ignored by the physics)
+    std::string notes;                    // a short note for the teacher: what to ask, what to watch for
     std::optional<LessonExpect> expect;   // a lesson's closed form, if it has one
+    std::vector<LessonControl> controls;  // the keys the lesson is about, shown first
     bool operator==(const Scene&) const = default;
 };
 
@@ -74,9 +90,8 @@ ChangedKeys changed_keys(const Scene& loaded, const WorldDef& now);
 
 std::string scene_to_json(const Scene& scene);
 
-enum class Overwrite { No, Yes };
-// Writes atomically (temporary file, then rename). With Overwrite::No an existing file is
-// left untouched and InputError is thrown. A failed write leaves any old file intact.
+// Writes atomically (file_output.h). With Overwrite::No an existing file is left untouched and
+// InputError is thrown. A failed write leaves any old file intact.
 void save_scene(const std::string& path, const Scene& scene, Overwrite overwrite);
 
 }  // namespace softbody

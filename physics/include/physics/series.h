@@ -25,6 +25,9 @@ inline constexpr std::size_t kSeriesBodies = 64;
 
 class Series {
 public:
+    // The columns every series starts with, in order; the followed things' come after.
+    enum Column : std::size_t { kTime, kKinetic, kGravitational, kElastic, kDissipated, kTotal, kFixedColumns };
+
     // Columns for what the world holds now (bodies and springs by name); a thing made later is
     // not followed, one unmade leaves its columns empty (NaN).
     explicit Series(const World& world);
@@ -32,6 +35,8 @@ public:
     // One row: the world as it is, its energies as the ledger last observed them.
     void record(const World& world, const EnergyLedger& ledger);
     void clear();
+    void keep_first(std::size_t rows);  // the rows after these go (time travel back)
+    void drop_first(std::size_t rows);  // the oldest rows go (a record kept within its bounds)
 
     const std::vector<SeriesColumn>& columns() const { return columns_; }
     std::size_t size() const { return ticks_.size(); }
