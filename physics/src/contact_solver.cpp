@@ -3,7 +3,6 @@
 #include "integrators.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <numeric>
 #include <tuple>
@@ -47,139 +46,6 @@ Quat turned(const Quat& q, const Vec3d& theta) {
     const double angle = length(theta);
     if (!(angle > 0.0)) return q;
     return Quat::from_axis_angle(theta / angle, angle) * q;
-}
-
-// The inverse of an n x n matrix (n <= 4) by Gauss-Jordan elimination with partial pivoting;
-// false when a pivot vanishes.
-bool invert(int n, const double (&A)[4][4], double (&inverse)[4][4]) {
-    double M[4][8];
-    for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < n; ++c) {
-            M[r][c] = A[r][c];
-            M[r][n + c] = r == c ? 1.0 : 0.0;
-        }
-    }
-    for (int c = 0; c < n; ++c) {
-        int pivot = c;
-        for (int r = c + 1; r < n; ++r) {
-            if (std::abs(M[r][c]) > std::abs(M[pivot][c])) pivot = r;
-        }
-        if (!(std::abs(M[pivot][c]) > 0.0)) return false;
-        if (pivot != c) {
-            for (int k = 0; k < 2 * n; ++k) std::swap(M[c][k], M[pivot][k]);
-        }
-        const double p = 1.0 / M[c][c];
-        for (int k = 0; k < 2 * n; ++k) M[c][k] *= p;
-        for (int r = 0; r < n; ++r) {
-            if (r == c || M[r][c] == 0.0) continue;
-            const double f = M[r][c];
-            for (int k = 0; k < 2 * n; ++k) M[r][k] -= f * M[c][k];
-        }
-    }
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) inverse[r][c] = M[r][n + c];
-    return true;
-}
-
-// Solves K_SS x_S = b_S for the points in `set` (at most four), with 1e-9 of the diagonal
-// added when there are two or more (three collinear corners leave it singular). False when
-// singular all the same.
-bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
-    int index[4], m = 0;
-    for (int i = 0; i < n; ++i) {
-        if (set & (1u << i)) index[m++] = i;
-    }
-    double A[4][4], A_inv[4][4];
-    for (int r = 0; r < m; ++r) {
-        for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
-        if (m > 1) A[r][r] *= 1.0 + 1e-9;
-    }
-    if (!invert(m, A, A_inv)) return false;
-    for (int i = 0; i < n; ++i) x[i] = 0.0;
-    for (int r = 0; r < m; ++r) {
-        double sum = 0.0;
-        for (int c = 0; c < m; ++c) sum += A_inv[r][c] * b[index[c]];
-        x[index[r]] = sum;
-    }
-    return true;
-}
-
-// The normal impulses x >= 0 of a manifold's n <= 4 points acting together. K is their
-// coupling; (K x)_i - b_i is point i's normal velocity above its target with impulses x, and it
-// must be zero where the point pushes (x_i > 0) and may be more where it does not (x_i = 0): a
-// linear complementarity problem, solved exactly by trying the sets of pushing points, all of
-// them first (with `K_solve`, prepared once a tick), then smaller sets, the first whose
-// impulses all push and whose other points do not close. Four corners on a plane leave K
-// singular (three would hold the face: statically indeterminate): of the answers, the one with
-// the least impulses is taken (b's part along the null direction z removed, and K_solve's z
-// filled in), which shares the load evenly and changes smoothly as the bodies move.
-void solve_block(const SolverManifold& m, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
-                 bool all_points) {
-    const auto fits = [&](unsigned set, const double (&y)[4]) {
-        for (int i = 0; i < n; ++i) {
-            if (set & (1u << i)) {
-                if (y[i] < 0.0) return false;
-            } else {
-                double w = -b[i];
-                for (int j = 0; j < n; ++j) w += K[i][j] * y[j];
-                if (w < -1e-9 * (std::abs(b[i]) + 1e-9)) return false;
-            }
-        }
-        return true;
-    };
-    const unsigned full = (1u << n) - 1u;
-    if (all_points) {
-        double c[4] = {b[0], b[1], b[2], b[3]};
-        if (m.singular) {
-            double along = 0.0;
-            for (int i = 0; i < n; ++i) along += c[i] * m.z[i];
-            for (int i = 0; i < n; ++i) c[i] -= along * m.z[i];
-        }
-        double y[4];
-        for (int r = 0; r < n; ++r) {
-            double sum = 0.0;
-            for (int k = 0; k < n; ++k) sum += m.K_solve[r][k] * c[k];
-            y[r] = sum;
-        }
-        // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
-        // corners the answer is the least-squares one: where the targets are not those of one
-        // motion of the face (corners at different gaps closing as far as each may), some
-        // corner would be left short of its target, and a set of three is the answer instead.
-        double largest = 0.0, scale = 0.0;
-        for (int i = 0; i < n; ++i) {
-            largest = std::max(largest, y[i]);
-            scale = std::max(scale, std::abs(b[i]));
-        }
-        bool fits_all = true;
-        for (int i = 0; i < n; ++i) {
-            double w = -b[i];
-            for (int j = 0; j < n; ++j) w += K[i][j] * std::max(y[j], 0.0);
-            fits_all = fits_all && y[i] >= -1e-12 * largest && std::abs(w) <= 1e-6 * scale + 1e-12;
-        }
-        if (fits_all) {
-            for (int i = 0; i < n; ++i) x[i] = std::max(y[i], 0.0);
-            return;
-        }
-    }
-    // No point pushes (all come apart): the commonest other answer.
-    bool apart = true;
-    for (int i = 0; i < n; ++i) apart = apart && b[i] <= 0.0;
-    if (apart) {
-        for (int i = 0; i < n; ++i) x[i] = 0.0;
-        return;
-    }
-    // Smaller sets, largest first (the full set again when it was not tried above).
-    for (int size = all_points ? n - 1 : n; size >= 1; --size) {
-        for (unsigned set = full; set > 0; --set) {
-            if (std::popcount(set) != size) continue;
-            double y[4];
-            if (solve_set(n, set, K, b, y) && fits(set, y)) {
-                for (int i = 0; i < n; ++i) x[i] = y[i];
-                return;
-            }
-        }
-    }
-    for (int i = 0; i < n; ++i) x[i] = 0.0;  // none: every point lets go
 }
 
 }  // namespace
@@ -248,43 +114,13 @@ void ContactSolver::setup(Manifold& m) {
         const double loaded = std::sqrt(p.normal_impulse * p.normal_mass / (h_ * settings_.stack_depth)) / (2.0 * 3.14159265358979323846);
         p.softness = make_soft(std::clamp(loaded, base, std::max(base, 0.25 / h_)), settings_.damping_ratio, h_);
     }
-    // What solves K for all points at once. Four corners on a plane: their normal velocities
-    // depend on the bodies' motion only through v_n + (w_a - w_b) . (p x n), an affine function
-    // of the point in the plane, so K has rank 3 and z, the affine dependency of the four
-    // (sum z_i = 0, sum z_i q_i = 0 for their coordinates q_i in the plane), spans its null space.
-    double A4[4][4];
-    for (int x = 0; x < n; ++x)
-        for (int y = 0; y < n; ++y) A4[x][y] = m.K[x][y];
-    m.singular = false;
-    if (n == 4) {
-        double q[4][2];
-        for (int x = 0; x < 4; ++x) {
-            const Vec3d r = points[x].at - points[0].at;
-            q[x][0] = dot(r, m.t[0]);
-            q[x][1] = dot(r, m.t[1]);
-        }
-        const auto det3 = [&](int a, int b, int c) {
-            return (q[b][0] - q[a][0]) * (q[c][1] - q[a][1]) - (q[c][0] - q[a][0]) * (q[b][1] - q[a][1]);
-        };
-        const double z[4] = {det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)};
-        const double size = std::sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + z[3] * z[3]);
-        double extent = 0.0;
-        for (int x = 0; x < 4; ++x) extent = std::max(extent, q[x][0] * q[x][0] + q[x][1] * q[x][1]);
-        if (size > 1e-9 * extent) {
-            m.singular = true;
-            const double fill = (m.K[0][0] + m.K[1][1] + m.K[2][2] + m.K[3][3]) / 4.0;
-            for (int x = 0; x < 4; ++x) m.z[x] = z[x] / size;
-            for (int x = 0; x < 4; ++x)
-                for (int y = 0; y < 4; ++y) A4[x][y] += fill * m.z[x] * m.z[y];
-        }
+    double q[4][2];  // the points in the contact plane, from the first (block_solver.h)
+    for (int x = 0; x < n; ++x) {
+        const Vec3d r = points[x].at - points[0].at;
+        q[x][0] = dot(r, m.t[0]);
+        q[x][1] = dot(r, m.t[1]);
     }
-    if (!m.singular && n > 1) {
-        for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
-    }
-    if (!invert(n, A4, m.K_solve)) {
-        for (int x = 0; x < n; ++x)
-            for (int y = 0; y < n; ++y) m.K_solve[x][y] = 0.0;
-    }
+    prepare_block(n, m.K, q, m.block);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -804,7 +640,7 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             }
         }
         if (count > 0) {
-            solve_block(m, count, count == n ? m.K : K, b, x, count == n);
+            solve_block(m.block, count, count == n ? m.K : K, b, x, count == n);
             for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
         }
         double sum = 0.0;
@@ -1065,7 +901,7 @@ void ContactSolver::restitute(bool after_positions) {
                     b[i] += K[i][j] * points_[m.first + std::uint32_t(index[j])].bounce_impulse;
                 }
             }
-            solve_block(m, n, K, b, lambda, n == int(m.count));
+            solve_block(m.block, n, K, b, lambda, n == int(m.count));
             for (int i = 0; i < n; ++i) {
                 Point& p = points_[m.first + std::uint32_t(index[i])];
                 const double applied = lambda[i] - p.bounce_impulse;

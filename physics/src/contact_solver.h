@@ -56,6 +56,7 @@
 #include <span>
 #include <vector>
 
+#include "block_solver.h"
 #include "physics/arrays.h"
 #include "physics/contact.h"
 #include "physics/mat3.h"
@@ -187,13 +188,9 @@ struct SolverManifold {
     Mat3 roll_mass;
     Vec3d roll;
     // The points' coupling K (K_ij: point i's change of normal velocity per unit impulse at
-    // point j), and what solves it for all points pushing: its inverse, or for four corners on
-    // a plane (K singular: three would hold the face) the inverse with the null direction z
-    // filled in, and z itself (solve_block in contact_solver.cpp).
+    // point j), and what solves it for all points pushing (block_solver.h).
     double K[4][4] = {};
-    double K_solve[4][4] = {};
-    double z[4] = {};
-    bool singular = false;
+    BlockInverse block;
 };
 
 class ContactSolver {
