@@ -17,6 +17,8 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <charconv>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -112,6 +114,16 @@ std::string key_text_of(const std::string& key, const py::handle& value) {
     return checked_text("key '" + key + "'", text);
 }
 
+// A key held as float (keys.h: single) as the decimal it is written as: dt 0.02, not 0.0199999996.
+double as_written(const KeyInfo& info, double value) {
+    if (!info.single || !std::isfinite(value)) return value;
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, static_cast<float>(value)).ptr;
+    double written = value;
+    std::from_chars(text, end, written);
+    return written;
+}
+
 py::object python_value(const KeyInfo& info, const KeyValue& value) {
     return std::visit(
         [&](const auto& v) -> py::object {
@@ -119,9 +131,11 @@ py::object python_value(const KeyInfo& info, const KeyValue& value) {
             if constexpr (std::is_same_v<T, std::monostate>) return py::none();
             else if constexpr (std::is_same_v<T, double>) {
                 if (info.type == KeyType::Whole) return py::int_(static_cast<long long>(v));
-                return py::float_(v);
+                return py::float_(as_written(info, v));
             } else if constexpr (std::is_same_v<T, bool>) return py::bool_(v);
-            else if constexpr (std::is_same_v<T, Vec3d>) return py::make_tuple(v.x, v.y, v.z);
+            else if constexpr (std::is_same_v<T, Vec3d>) {
+                return py::make_tuple(as_written(info, v.x), as_written(info, v.y), as_written(info, v.z));
+            }
             else if constexpr (std::is_same_v<T, Quat>) return py::make_tuple(v.w, v.x, v.y, v.z);
             else if constexpr (std::is_same_v<T, std::string>) return py::str(v);
             else return py::cast(v);  // vertex indices: a list
@@ -205,9 +219,17 @@ public:
         {
             Guard guard(*this);
             py::gil_scoped_release release;
+            // Ctrl+C stops a long run between two ticks (the ticks done so far stay done).
+            using Clock = std::chrono::steady_clock;
+            auto checked = Clock::now();
             for (long long t = 0; t < ticks && world_->status() == Status::Ok; ++t) {
                 world_->tick();
                 if (world_->status() == Status::Ok && series_ && world_->ticks() % std::uint64_t(series_every_) == 0) record();
+                if (Clock::now() - checked > std::chrono::milliseconds(100)) {
+                    checked = Clock::now();
+                    py::gil_scoped_acquire acquire;
+                    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                }
             }
             if (world_->status() == Status::Ok) ledger_.observe(*world_);
         }
@@ -233,6 +255,7 @@ public:
         Guard guard(*this);
         const WorldDef def = world_->def();
         const std::vector<KeyTarget> targets = resolve_key(name, thing_names(def));
+        if (targets.empty()) throw InputError("key '" + name + "': nothing in the world has it");
         return python_value(*targets.front().info, world_->key(name));
     }
     // Every key of this world by the name set() takes: the world's, then each body's and each
