@@ -430,14 +430,14 @@ public:
     std::string add_spring(const py::object& a, const py::object& b, const py::object& stiffness, const py::object& damping,
                            const py::object& rest_length, const std::string& name) {
         Guard guard(*this);
+        // The numbers go through the key table (its ranges and messages) as a scene's would, by
+        // the spring's name (a stand-in for one without, given back after).
+        const std::string key_name = name.empty() ? std::string("spring") : name;
         SpringDef def;
-        def.name = name;
+        def.name = key_name;
         def.a = spring_end(a, "a");
         def.b = spring_end(b, "b");
-        // The numbers go through the key table (its ranges and messages), as a scene's would.
         Scene scene;
-        const std::string key_name = name.empty() ? std::string("spring") : name;
-        def.name = key_name;
         scene.springs.push_back(def);
         set_scene_key(scene, key_name + ".stiffness", key_text_of("stiffness", stiffness));
         set_scene_key(scene, key_name + ".damping", key_text_of("damping", damping));
