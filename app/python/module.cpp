@@ -548,6 +548,8 @@ public:
         return pixels;
 #else
         (void)path;
+        (void)width;
+        (void)height;
         throw std::runtime_error("this build of the module has no renderer (built with SOFTBODY_BUILD_GUI=OFF)");
 #endif
     }
