@@ -8,6 +8,9 @@
 #   ./dev.sh soak   install, build the app, run the demo for 20,000 scripted frames (virtual display)
 #   ./dev.sh web    install what is missing, build the browser version (build-web/site/) and serve
 #                   it at http://127.0.0.1:8080/ until stopped (WEB_PORT for another port)
+#   ./dev.sh python install what is missing, build the Python module (app/python), open python3
+#                   with it importable (`import softbody`); with arguments, `python3 -m jupyter ARGS`
+#                   instead (./dev.sh python notebook assets/notebooks/, with Debian's jupyter-notebook)
 # Everything comes from Debian's packages (the browser version's few C++ sources from Debian's
 # source packages, by apt); nothing is downloaded from anywhere else.
 # ffmpeg is for videos: the app's Record button and `softbody render --video` run it (found at run
@@ -21,9 +24,12 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev zlib1g-dev libqhull-dev libmeshoptimizer-dev
   xvfb xauth libgl1-mesa-dri libglx-mesa0
   ffmpeg
+  pybind11-dev python3-dev python3-numpy
 )
 # Only `test` needs these: clang and its runtimes for the fuzz targets (libFuzzer).
 TEST_PACKAGES=(clang libclang-rt-14-dev)
+# The lesson notebooks (assets/notebooks): `test` runs them headless, `python` opens them.
+NOTEBOOK_PACKAGES=(python3-matplotlib python3-nbclient python3-ipykernel)
 # The browser version (`web`, and `test`, which tests it in a browser): emscripten compiles it,
 # chromium runs the tests. The sources of Dear ImGui, Qhull and meshoptimizer, which Debian
 # ships built for this machine only, come from their Debian source packages (web/fetch_sources.py).
@@ -77,7 +83,7 @@ web_tests() {
   local start=$SECONDS
   build_web
   python3 tests/web/browser_test.py --site "$WEB_DIR/site" --softbody "$BUILD_DIR/app/softbody" \
-    --compare "$BUILD_DIR/tests/render/softbody_image_compare" --work "$WEB_DIR/tests"
+    --compare "$BUILD_DIR/tests/render/softbody_image_compare" --module "$BUILD_DIR/app/python" --work "$WEB_DIR/tests"
   echo "dev.sh: browser build and tests took $(( SECONDS - start )) s"
 }
 
@@ -140,7 +146,7 @@ case "${1:-}" in
     exec "$BUILD_DIR/app/softbody" "$@"
     ;;
   test)
-    install_missing "${TEST_PACKAGES[@]}" "${WEB_PACKAGES[@]}"
+    install_missing "${TEST_PACKAGES[@]}" "${NOTEBOOK_PACKAGES[@]}" "${WEB_PACKAGES[@]}"
     build
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$JOBS"
     web_tests
@@ -159,6 +165,17 @@ case "${1:-}" in
     "${runner[@]}" "$BUILD_DIR/app/softbody" run --size 800x600 --frames "$frames" --script tests/soak/soak.script
     echo "dev.sh: soak of $frames frames took $(( $(date +%s) - start )) s"
     ;;
+  python)
+    # The interpreter the module was built for (Debian's python3: app/python/CMakeLists.txt).
+    install_missing "${NOTEBOOK_PACKAGES[@]}"
+    build softbody_python
+    shift
+    interpreter=$(cat "$BUILD_DIR/app/python/interpreter")
+    PYTHONPATH="$(cd "$BUILD_DIR/app/python" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
+    export PYTHONPATH
+    if [ $# -eq 0 ]; then exec "$interpreter"; fi
+    exec "$interpreter" -m jupyter "$@"
+    ;;
   web)
     install_missing "${WEB_PACKAGES[@]}"
     build_web
@@ -170,6 +187,7 @@ case "${1:-}" in
     echo "       ./dev.sh test   (install, build, run every test, then under the sanitizers, then the fuzzers)" >&2
     echo "       ./dev.sh soak   (install, build, 20,000 scripted frames of the demo)" >&2
     echo "       ./dev.sh web    (install, build the browser version, serve it at http://127.0.0.1:8080/)" >&2
+    echo "       ./dev.sh python (install, build the Python module, open python3 with it; ARGS: jupyter ARGS)" >&2
     exit 2
     ;;
 esac

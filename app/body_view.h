@@ -161,4 +161,30 @@ inline WorldBounds world_bounds(const World& world) {
     return bounds;
 }
 
+// The camera framed on the sphere to keep in view: the bodies now, and where they will land on
+// the floor below (`softbody render` and the Python module's pictures).
+inline void frame_body(const World& world, float aspect, render::Camera& camera, float zoom) {
+    const WorldSettings& params = world.settings();
+    const WorldBounds bounds = world_bounds(world);
+    const glm::vec3 c = bounds.centre;
+    const float r = std::max(bounds.radius, 1e-3f);
+    glm::vec3 centre = c;
+    float radius = r;
+    bool pinned = false;
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) pinned = pinned || !world.soft_body(b).def.pinned.empty();
+    if (pinned) {
+        // A pinned body hangs: room below it for the sag, not the whole way to the floor.
+        centre.z -= 0.4f * r;
+        radius = 1.4f * r;
+    } else if (params.ground && c.z - params.ground_height > 0.0f) {
+        const glm::vec3 landed(c.x, c.y, std::min(c.z, params.ground_height + 0.6f * r));
+        centre = 0.5f * (centre + landed);
+        radius = 0.5f * glm::length(glm::vec3(c.x, c.y, c.z) - landed) + r;
+    }
+    // One body is framed with room to squash and roll; a group of bodies is its own margin.
+    const bool alone = world.soft_body_count() + world.rigid_body_count() == 1;
+    camera.frame(centre, std::max(radius, (alone ? 1.6f : 1.0f) * r), aspect, 0.85f);
+    camera.zoom(zoom);
+}
+
 }  // namespace softbody::app

@@ -12,6 +12,7 @@
 #include "physics/generated.h"
 #include "physics/lesson.h"
 #include "physics/scene_io.h"
+#include "scene_source.h"
 
 namespace softbody::app {
 
@@ -48,38 +49,6 @@ std::string whole_problem(std::string_view text, std::int64_t min, std::int64_t 
 // A check that CLI11 runs on the text before converting it; its message follows "OPTION: ".
 CLI::Validator check(std::function<std::string(const std::string&)> problem) {
     return CLI::Validator([problem = std::move(problem)](std::string& text) { return problem(text); }, "", "");
-}
-
-}  // namespace
-
-namespace {
-
-// The bundled assets: beside the installed executable (PREFIX/bin/softbody finds
-// PREFIX/share/softbody/assets), else the source tree's the build was made from; in the
-// browser, the packaged folder.
-std::string find_assets() {
-#if !defined(__EMSCRIPTEN__)
-    std::error_code error;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "softbody" / "assets";
-        if (std::filesystem::exists(installed / "scenes" / "default.json", error)) return installed.string();
-    }
-#endif
-    return SOFTBODY_ASSETS_DIR;
-}
-
-// A relative scene path that does not exist from here: the same path from the assets' folder
-// ("assets/scenes/x.json" run from anywhere), or a bundled scene's name ("spring.json").
-std::string find_scene(const std::string& path) {
-    std::error_code error;
-    const std::filesystem::path p(path);
-    if (p.is_absolute() || is_generated(path) || std::filesystem::exists(p, error)) return path;
-    const std::filesystem::path assets(assets_dir());
-    for (const std::filesystem::path& candidate : {assets.parent_path() / p, assets / p, assets / "scenes" / p}) {
-        if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
-    }
-    return path;  // not found anywhere: its reader says so, naming the path as given
 }
 
 }  // namespace
@@ -174,8 +143,7 @@ Scene SceneOptions::resolve() const {
     if (lesson != 0 && !scene.empty()) throw UsageError("give --scene or --lesson, not both");
     Scene resolved;
     if (lesson != 0) resolved = load_scene(lesson_path(lesson));
-    else if (!scene.empty()) resolved = load_scene(find_scene(scene));
-    else if (mesh.empty()) resolved = load_scene(default_scene_path());
+    else if (!scene.empty() || mesh.empty()) resolved = open_scene(scene);
     if (!mesh.empty()) {
         // A mesh brought on the command line: every soft body's (or, in a scene without one, a
         // new body's), sized and stood up automatically (the scene's keys were for its own
@@ -187,9 +155,7 @@ Scene SceneOptions::resolve() const {
         const auto eq = assignment.find('=');
         set_scene_key(resolved, assignment.substr(0, eq), assignment.substr(eq + 1));
     }
-    if (resolved.empty()) {
-        throw InputError("nothing to simulate: give --mesh FILE, or a scene file with \"soft_bodies\" or \"rigid_bodies\"");
-    }
+    require_bodies(resolved);
     return resolved;
 }
 
@@ -199,12 +165,6 @@ std::string SceneOptions::name() const {
     if (!mesh.empty()) return std::filesystem::path(mesh).stem().string();
     return "default";
 }
-
-std::string assets_dir() {
-    static const std::string dir = find_assets();
-    return dir;
-}
-std::string default_scene_path() { return assets_dir() + "/scenes/default.json"; }
 
 std::string lesson_path(std::int64_t number) {
     if (number < 1 || std::size_t(number) > lessons().size()) {

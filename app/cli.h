@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "physics/scene_io.h"
+#include "scene_source.h"  // assets_dir, find_scene: where --scene looks
 
 namespace CLI {
 class App;
@@ -68,10 +69,6 @@ struct SceneOptions {
     std::string name() const;
 };
 
-// Folder of the bundled assets (meshes and scenes): beside the installed executable, or the
-// source tree's the build was made from.
-std::string assets_dir();
-std::string default_scene_path();
 // Lesson `number`'s scene file (from 1, as `softbody lessons` numbers them); UsageError when there is none.
 std::string lesson_path(std::int64_t number);
 

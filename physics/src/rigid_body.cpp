@@ -64,7 +64,7 @@ Geometry mesh_geometry(const RigidBodyDef& def) {
     try {
         mesh = open_mesh(def.mesh);
     } catch (const InputError& e) {
-        throw InputError("rigid body '" + printable(def.name) + "': " + e.what());
+        rethrow_within("rigid body '" + printable(def.name) + "': ", e);
     }
     std::vector<Vec3d> points;
     points.reserve(mesh.positions.size());

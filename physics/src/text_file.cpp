@@ -27,7 +27,10 @@ private:
     int fd_;
 };
 
-[[noreturn]] void refuse(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+// Every refusal here is about the file as a file (FileError), never about what it says.
+[[noreturn]] void refuse(const std::string& path, const std::string& what, int error_number = 0) {
+    throw FileError(path + ": " + what, error_number);
+}
 
 std::string reason(int error) { return std::string(" (") + std::strerror(error) + ")"; }
 
@@ -40,12 +43,12 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, std::
     const Descriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
     if (fd.get() < 0) {
         const int error = errno;
-        if (error == EISDIR) refuse(path, "is a folder, not a " + kind);
-        refuse(path, "cannot open " + kind + reason(error));
+        if (error == EISDIR) refuse(path, "is a folder, not a " + kind, error);
+        refuse(path, "cannot open " + kind + reason(error), error);
     }
     // Decided on the open descriptor, not the name: the file cannot be swapped in between.
     struct stat info {};
-    if (::fstat(fd.get(), &info) != 0) refuse(path, "cannot read " + kind + reason(errno));
+    if (::fstat(fd.get(), &info) != 0) refuse(path, "cannot read " + kind + reason(errno), errno);
     if (S_ISDIR(info.st_mode)) refuse(path, "is a folder, not a " + kind);
     if (!S_ISREG(info.st_mode)) refuse(path, "is not a regular file (a pipe, socket or device), not a " + kind);
     if (info.st_size < 0 || static_cast<unsigned long long>(info.st_size) > max_bytes) {
@@ -54,7 +57,7 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, std::
     }
     const int flags = ::fcntl(fd.get(), F_GETFL);
     if (flags < 0 || ::fcntl(fd.get(), F_SETFL, flags & ~O_NONBLOCK) != 0) {
-        refuse(path, "cannot read " + kind + reason(errno));
+        refuse(path, "cannot read " + kind + reason(errno), errno);
     }
 
     // The size is a hint, not a promise: the file may grow or shrink while it is read.
@@ -65,7 +68,7 @@ std::string read_text_file(const std::string& path, std::size_t max_bytes, std::
         const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
         if (n < 0) {
             if (errno == EINTR) continue;
-            refuse(path, "cannot read " + kind + reason(errno));
+            refuse(path, "cannot read " + kind + reason(errno), errno);
         }
         if (n == 0) break;
         text.append(buffer, static_cast<std::size_t>(n));

@@ -107,7 +107,7 @@ SoftBody World::make_soft_body(const SoftBodyDef& def, const SoftBodyDef* built)
         try {
             body.def.geometry = std::make_shared<const Mesh>(open_mesh(made.mesh));
         } catch (const InputError& e) {
-            throw InputError("soft body '" + printable(def.name) + "': " + e.what());
+            rethrow_within("soft body '" + printable(def.name) + "': ", e);
         }
     }
     body.mesh = *body.def.geometry;

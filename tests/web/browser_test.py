@@ -4,7 +4,7 @@ the page from the project's own static server (web/serve.py) and the test reads 
 prints to the console. Run by `./dev.sh test` after building build-web/site:
 
     python3 tests/web/browser_test.py --site build-web/site --softbody build/app/softbody \\
-        --compare build/tests/render/softbody_image_compare [--work DIR] [--bless]
+        --compare build/tests/render/softbody_image_compare [--module build/app/python] [--work DIR] [--bless]
 
 Cases (all must pass):
   pile        the issue's scripted run, on the threaded build (the page cross-origin isolated):
@@ -20,6 +20,9 @@ Cases (all must pass):
               tile: the native portable tile's state hash.
   one_thread  the same on a page that is not cross-origin isolated: the page must pick the
               one-thread build, and reach the same hash.
+  module      the same scene and ticks in the Python module (app/python, built in --module):
+              the same state hash again, so that the desktop build, the page and the module are
+              compared in one place. Skipped, saying so, only when the module was not built.
   drop_record a mesh file dropped onto the page (an HTML drop event carrying assets/meshes/cube.obj)
               becomes the body (the summary's mesh and 8 particles), and the M key records:
               the summary's recording, and a WebM file the browser downloads.
@@ -91,6 +94,27 @@ def native(softbody, args):
     result = subprocess.run(argv, cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
     if result.returncode != 0:
         raise Failure(f"native {' '.join(argv)} failed ({result.returncode}): {result.stderr.strip()}")
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def module_run(module_dir, args):
+    """The Python module's summary for a `simulate` command (scene and ticks), with the portable
+    pair tile; None when the module was not built. Run by the interpreter it was built for."""
+    if not os.path.isdir(module_dir) or not any(f.startswith("softbody.") and f.endswith(".so") for f in os.listdir(module_dir)):
+        return None
+    interpreter = sys.executable
+    if os.path.exists(os.path.join(module_dir, "interpreter")):
+        with open(os.path.join(module_dir, "interpreter")) as f:
+            interpreter = f.read().strip() or interpreter
+    code = ("import json, sys, softbody\n"
+            "world = softbody.World(sys.argv[1])\n"
+            "world.step(int(sys.argv[2]))\n"
+            "print(json.dumps({'ticks': world.ticks, 'status': world.status, 'state_hash': world.state_hash}))\n")
+    env = dict(os.environ, SOFTBODY_KERNEL="portable", PYTHONPATH=os.path.abspath(module_dir))
+    result = subprocess.run([interpreter, "-c", code, args["scene"], args["ticks"]], cwd=ROOT, env=env,
+                            capture_output=True, text=True, timeout=600)
+    if result.returncode != 0:
+        raise Failure(f"module: the Python module's run failed ({result.returncode}): {result.stderr.strip()}")
     return json.loads(result.stdout.strip().splitlines()[-1])
 
 
@@ -176,6 +200,8 @@ def main():
     parser.add_argument("--site", default=os.path.join(ROOT, "build-web", "site"))
     parser.add_argument("--softbody", default=os.path.join(ROOT, "build", "app", "softbody"))
     parser.add_argument("--compare", default=os.path.join(ROOT, "build", "tests", "render", "softbody_image_compare"))
+    parser.add_argument("--module", default=os.path.join(ROOT, "build", "app", "python"),
+                        help="the built Python module's folder (its state hash is compared too)")
     parser.add_argument("--work", default=os.path.join(ROOT, "build-web", "tests"))
     parser.add_argument("--bless", action="store_true", help="write the pile's picture to its reference")
     options = parser.parse_args()
@@ -219,6 +245,22 @@ def main():
                 failures.append(str(e))
             # threads and one_thread: the SIMD tile over several blocks, on each build.
             expected = native(options.softbody, MIXED_ARGS)
+            # module: the third runtime, against the same native summary as the two pages.
+            case_start = time.monotonic()
+            try:
+                module = module_run(options.module, MIXED_ARGS)
+                if module is None:
+                    print(f"module: skipped, the Python module was not built in {options.module} "
+                          "(it needs pybind11-dev, python3-dev and python3-numpy)", flush=True)
+                else:
+                    different = [f for f in ("ticks", "status", "state_hash") if module[f] != expected.get(f)]
+                    if different:
+                        raise Failure("module: the Python module's run differs from the native build's: " +
+                                      ", ".join(f"{f} {module[f]} against {expected.get(f)}" for f in different))
+                    print(f"module: ok, state_hash {module['state_hash']} after {module['ticks']} ticks, as the native "
+                          f"build's ({time.monotonic() - case_start:.0f} s)", flush=True)
+            except Failure as e:
+                failures.append(str(e))
             for name, base, build in (("threads", isolated, "the threaded build"), ("one_thread", plain, "the one-thread build")):
                 case_start = time.monotonic()
                 try:
