@@ -174,6 +174,7 @@ case "${1:-}" in
     PYTHONPATH="$(cd "$BUILD_DIR/app/python" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
     export PYTHONPATH
     if [ $# -eq 0 ]; then exec "$interpreter"; fi
+    install_missing jupyter-notebook  # the notebook server, for this use only
     exec "$interpreter" -m jupyter "$@"
     ;;
   web)
