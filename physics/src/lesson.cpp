@@ -29,6 +29,7 @@ constexpr LessonInfo kLessons[] = {
     {"quaternion.json", "Eq. 35, Listing 9"},
     {"intermediate_axis.json", "Eq. 26, 28, 36"},
     {"figure7.json", "Eq. 37, 38, Figure 7"},
+    {"collision_1d.json", "Eq. 37, 38: momentum"},
 };
 
 constexpr ClosedFormInfo kForms[] = {

@@ -69,7 +69,8 @@ TEST(Lessons, EveryBundledSceneHasATitleAndText) {
 TEST(Lessons, InTheAddendumsOrderAndEachLoads) {
     const std::vector<std::string> expected = {"spring.json", "damper.json", "drag.json", "slope.json",
                                                "listing8.json", "stability.json", "seesaw.json", "tumbling_box.json",
-                                               "quaternion.json", "intermediate_axis.json", "figure7.json"};
+                                               "quaternion.json", "intermediate_axis.json", "figure7.json",
+                                               "collision_1d.json"};
     ASSERT_EQ(lessons().size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(lessons()[i].file, expected[i]);
@@ -337,6 +338,31 @@ TEST(Lessons, Figure7HitIsEquation38) {
     const Comparison& l2 = find(heavy, "lambda, the impulse");
     EXPECT_NEAR(l2.predicted, 1.5 / (0.2 + 1.0 + 0.48 * 0.48 / J), 1e-9);
     expect_agrees(l2, "figure 7, heavy ball");
+}
+
+// Two balls head on: the impulse is (1 + e) mu v with mu = m_1 m_2 / (m_1 + m_2), so the heavy
+// ball leaves at (1 + e) m_1 v / (m_1 + m_2) and the light one at v - lambda / m_1; momentum is
+// kept at every e, and at e = 1 the kinetic energy too, to rounding.
+TEST(Lessons, HeadOnCollisionKeepsMomentumAndPartsAtETimesTheSpeed) {
+    for (const double e : {0.0, 0.5, 1.0}) {
+        const std::string what = "head on, e = " + std::to_string(e);
+        const LessonRun run = run_lesson("collision_1d.json", 1.5, {{"restitution", std::to_string(e)}});
+        const Comparison& lambda = find(run, "lambda, the impulse");
+        EXPECT_NEAR(lambda.predicted, (1.0 + e) * 0.75 * 2.0, 1e-9) << what;
+        expect_agrees(lambda, what);
+        const Comparison& light = find(run, "v . n after, of 'light'");
+        expect_agrees(light, what);
+        EXPECT_NEAR(std::abs(light.predicted), std::abs(2.0 - (1.0 + e) * 0.75 * 2.0), 1e-9) << what;
+    }
+    // The same in the world itself: momentum before and after, and at e = 1 the energy.
+    Scene scene = load_scene(scene_path("collision_1d.json"));
+    set_scene_key(scene, "restitution", "1");
+    World world((scene));
+    world.run(75);  // 1.5 s: the hit is over
+    const double p = 1.0 * world.rigid_motion(0).v.x + 3.0 * world.rigid_motion(1).v.x;
+    EXPECT_NEAR(p, 2.0, 1e-9);
+    EXPECT_NEAR(world.rigid_motion(0).v.x, -1.0, 1e-9);  // (m_1 - m_2) / (m_1 + m_2) v
+    EXPECT_NEAR(world.rigid_motion(1).v.x, 1.0, 1e-9);   // 2 m_1 / (m_1 + m_2) v
 }
 
 // Explicit Euler's q + h/2 w q: |q| grows by sqrt(1 + (h w / 2)^2) a step, exactly (up to
