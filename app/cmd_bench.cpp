@@ -1022,6 +1022,163 @@ nlohmann::ordered_json busy_section(const std::vector<BusyScene>& scenes, int th
             {"rows", rows}};
 }
 
+// The pair kernel alone, every tile variant this CPU runs, against this CPU's peak: the peak's
+// rows and the kernel's, as JSON (and as tables unless `json`).
+struct KernelSection {
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    nlohmann::ordered_json peak = nlohmann::ordered_json::array();
+};
+KernelSection kernel_section(const std::vector<std::size_t>& sizes, const std::vector<int>& thread_counts, double budget,
+                             bool quick, bool json) {
+    KernelSection out;
+    nlohmann::ordered_json& kernel_rows = out.rows;
+    nlohmann::ordered_json& peak_json = out.peak;
+    const std::vector<PairKernelVariant> variants = [] {
+        std::vector<PairKernelVariant> here;
+        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
+            if (PairForceKernel::supported(v)) here.push_back(v);
+        }
+        return here;
+    }();
+    {
+        // The peak: independent multiply-add chains at each width, as the tiles issue them.
+        std::vector<Peak> peaks;
+        const double probe_seconds = quick ? 0.05 : 0.25;
+        for (PairKernelVariant v : variants) {
+            for (int t : thread_counts) peaks.push_back({v, t, PairForceKernel::peak_flops(v, t, probe_seconds)});
+        }
+        auto peak_of = [&](PairKernelVariant v, int t) {
+            for (const Peak& p : peaks) {
+                if (p.variant == v && p.threads == t) return p.flops;
+            }
+            return 0.0;
+        };
+        for (const Peak& p : peaks) {
+            peak_json.push_back({{"tiles", PairForceKernel::name(p.variant)}, {"width", width_of(p.variant)},
+                                 {"threads", p.threads}, {"gflops", p.flops / 1e9}});
+        }
+        if (!json) {
+            std::cout << "\nthis CPU's peak (independent multiply-add chains, " << (quick ? "0.05" : "0.25")
+                      << " s of short bursts per row, median burst; a fused multiply-add is 2 flops):\n";
+            for (const Peak& p : peaks) {
+                std::printf("  %-7s %-7s %d thread%s %8.1f GFLOP/s\n", width_of(p.variant), PairForceKernel::name(p.variant),
+                            p.threads, p.threads > 1 ? "s" : " ", p.flops / 1e9);
+            }
+            std::cout << "\npair kernel alone (PairForceKernel::compute on a moving cloud, no tick around it). flops/pair\n"
+                         "is counted in the tile as written (pair_forces.cpp): 9 subtractions, 3 dot products (l^2, |r_j - r_i|^2\n"
+                         "for the rest length, (v_j - v_i).d), a square root for l0, 1/sqrt(l^2) and its Newton step, the\n"
+                         "force scale, 6 multiply-adds onto the two particles; % peak = pairs/s x flops/pair over the peak\n"
+                         "of the tile's width at the same thread count:\n";
+            std::printf("%-8s %6s %3s %6s %19s %9s %6s %8s %7s\n", "tiles", "N", "thr", "calls", "ms/call (best)", "pairs/s",
+                        "flops", "GFLOP/s", "% peak");
+        }
+        for (std::size_t n : sizes) {
+            for (PairKernelVariant variant : variants) {
+                for (int t : thread_counts) {
+                    const Measurement m = measure_kernel(variant, n, t, 0.25 * budget);
+                    const double rate = m.measured ? m.pairs_per_tick / m.median_s : 0.0;
+                    const int flops = PairForceKernel::flops_per_pair(variant);
+                    const double peak = peak_of(variant, t), gflops = rate * flops / 1e9;
+                    const double fraction = peak > 0.0 ? rate * flops / peak : 0.0;
+                    kernel_rows.push_back({{"tiles", PairForceKernel::name(variant)}, {"particles", n}, {"threads", t},
+                                           {"calls_measured", m.ticks}, {"ms_per_call_median", ms(m.median_s)},
+                                           {"ms_per_call_best", ms(m.best_s)}, {"pairs_per_second", rate},
+                                           {"flops_per_pair", flops}, {"gflops", gflops}, {"peak_gflops", peak / 1e9},
+                                           {"fraction_of_peak", fraction}});
+                    if (!json) {
+                        char timing[40];
+                        std::snprintf(timing, sizeof timing, "%.4g (%.4g)", ms(m.median_s), ms(m.best_s));
+                        std::printf("%-8s %6zu %3d %6d %19s %9s %6d %8.1f %6.0f%%\n", PairForceKernel::name(variant), n, t,
+                                    m.ticks, timing, si(rate).c_str(), flops, gflops, 100.0 * fraction);
+                    }
+                }
+            }
+        }
+        std::cout.flush();
+    }
+    return out;
+}
+
+// The largest cloud that runs in real time (a tick in at most dt) at `threads`, from the cloud
+// rows measured and a bisection between them; null when none of them does.
+nlohmann::ordered_json search_real_time(const std::vector<Row>& rows, const std::string& fast_name, double dt, int threads,
+                                        double budget, bool quick, bool json, std::ostream& log) {
+    nlohmann::ordered_json real_time = nullptr;
+    {
+        if (!json) {
+            std::cout << "\nsearching the largest cloud that runs in real time: median tick within " << dt
+                      << " s (fast kernel, " << threads << " threads; a size that misses it although some of its ticks"
+                      << " made it is measured once more)...\n";
+        }
+        std::size_t lo = 0, hi = kMaxParticles + 1;  // lo runs in real time, hi does not (none yet: above the max)
+        Measurement at_lo, at_hi;
+        for (const Row& r : rows) {
+            if (r.scene.rfind("cloud:", 0) != 0 || r.kernel != fast_name || r.m.threads != threads || !r.m.measured || r.m.diverged) continue;
+            if (r.m.median_s <= dt && r.n > lo) {
+                lo = r.n;
+                at_lo = r.m;
+            }
+            if (r.m.median_s > dt && r.n < hi) {
+                hi = r.n;
+                at_hi = r.m;
+            }
+        }
+        const std::size_t resolution = quick ? 500 : 50;
+        const double probe_budget = quick ? 0.1 : std::max(0.3, 0.4 * budget);
+        if (lo > 0 && hi > lo) {
+            auto probe = [&](std::size_t n) {
+                Measurement m = measure(Kernel::Fast, cloud(n), threads, probe_budget);
+                if (m.measured && m.median_s > dt && m.best_s <= dt) {
+                    // Some ticks were fast enough: other work may have slowed the rest. Once more.
+                    const Measurement again = measure(Kernel::Fast, cloud(n), threads, probe_budget);
+                    if (again.measured && again.median_s < m.median_s) m = again;
+                }
+                const bool real = m.measured && !m.diverged && m.median_s <= dt;
+                log << "  N " << n << ": " << m.substeps << " substeps, " << ms(m.median_s) << " ms/tick"
+                    << (real ? " (real time)" : "") << "\n";
+                if (real) lo = n, at_lo = m;
+                else hi = n, at_hi = m;
+            };
+            while (hi > kMaxParticles && lo < kMaxParticles) probe(std::min(2 * lo, kMaxParticles));  // find a too-slow size
+            while (hi <= kMaxParticles && hi - lo > resolution) probe((lo + hi) / 2 / 10 * 10);
+            real_time = {{"largest_particles", lo},   {"substeps", at_lo.substeps},
+                         {"ms_per_tick", ms(at_lo.median_s)}, {"threads", at_lo.threads},
+                         {"first_too_slow", hi},      {"first_too_slow_substeps", at_hi.substeps},
+                         {"first_too_slow_ms_per_tick", ms(at_hi.median_s)}, {"resolution", resolution}};
+            if (!json) {
+                std::printf("largest real-time cloud: N = %zu with %d substeps, %.2f ms a tick (%.1f ticks/s)", lo,
+                            at_lo.substeps, ms(at_lo.median_s), 1.0 / at_lo.median_s);
+                if (hi <= kMaxParticles) std::printf("; N = %zu takes %.2f ms (%d substeps)", hi, ms(at_hi.median_s), at_hi.substeps);
+                std::printf("\n");
+            }
+        } else if (!json) {
+            std::cout << "none of the measured sizes runs in real time\n";
+        }
+    }
+    return real_time;
+}
+
+// What the pair forces need at 10,000 and 20,000 particles, by kernel (MB).
+nlohmann::ordered_json memory_section(bool one_section, bool json) {
+    nlohmann::ordered_json memory = nlohmann::ordered_json::array();
+    if (!json && !one_section) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
+    for (std::size_t n : {std::size_t(10000), std::size_t(20000)}) {
+        if (one_section) break;
+        const double mb = 1e6;
+        const double kernel = double(PairForceKernel::memory_bytes(n)) / mb;
+        const double stored_l0 = double(n) * double(n - 1) / 2.0 * 4.0 / mb;
+        const double tables = 3.0 * double(n) * double(n) * 4.0 / mb;
+        memory.push_back({{"particles", n}, {"fast_kernel_mb", kernel}, {"stored_rest_lengths_mb", stored_l0},
+                          {"baseline_tables_mb", tables}});
+        if (!json) {
+            std::printf("  N %5zu: fast kernel %.1f (packed state + per-tile partial forces; rest lengths recomputed); "
+                        "one float l0 per pair would add %.0f; the baseline's N x N k, c, l0 tables take %.0f\n",
+                        n, kernel, stored_l0, tables);
+        }
+    }
+    return memory;
+}
+
 }  // namespace
 
 int bench_command(int argc, char** argv) {
@@ -1160,71 +1317,8 @@ int bench_command(int argc, char** argv) {
     }
 
     // --- The pair kernel alone, every tile variant this CPU runs, against this CPU's peak ---------
-    const std::vector<PairKernelVariant> variants = [] {
-        std::vector<PairKernelVariant> here;
-        for (auto v : {PairKernelVariant::Scalar, PairKernelVariant::Avx2, PairKernelVariant::Avx512, PairKernelVariant::WasmSimd128}) {
-            if (PairForceKernel::supported(v)) here.push_back(v);
-        }
-        return here;
-    }();
-    nlohmann::ordered_json kernel_rows = nlohmann::ordered_json::array();
-    nlohmann::ordered_json peak_json = nlohmann::ordered_json::array();
-    if (kernels) {
-        // The peak: independent multiply-add chains at each width, as the tiles issue them.
-        std::vector<Peak> peaks;
-        const double probe_seconds = quick ? 0.05 : 0.25;
-        for (PairKernelVariant v : variants) {
-            for (int t : thread_counts) peaks.push_back({v, t, PairForceKernel::peak_flops(v, t, probe_seconds)});
-        }
-        auto peak_of = [&](PairKernelVariant v, int t) {
-            for (const Peak& p : peaks) {
-                if (p.variant == v && p.threads == t) return p.flops;
-            }
-            return 0.0;
-        };
-        for (const Peak& p : peaks) {
-            peak_json.push_back({{"tiles", PairForceKernel::name(p.variant)}, {"width", width_of(p.variant)},
-                                 {"threads", p.threads}, {"gflops", p.flops / 1e9}});
-        }
-        if (!json) {
-            std::cout << "\nthis CPU's peak (independent multiply-add chains, " << (quick ? "0.05" : "0.25")
-                      << " s of short bursts per row, median burst; a fused multiply-add is 2 flops):\n";
-            for (const Peak& p : peaks) {
-                std::printf("  %-7s %-7s %d thread%s %8.1f GFLOP/s\n", width_of(p.variant), PairForceKernel::name(p.variant),
-                            p.threads, p.threads > 1 ? "s" : " ", p.flops / 1e9);
-            }
-            std::cout << "\npair kernel alone (PairForceKernel::compute on a moving cloud, no tick around it). flops/pair\n"
-                         "is counted in the tile as written (pair_forces.cpp): 9 subtractions, 3 dot products (l^2, |r_j - r_i|^2\n"
-                         "for the rest length, (v_j - v_i).d), a square root for l0, 1/sqrt(l^2) and its Newton step, the\n"
-                         "force scale, 6 multiply-adds onto the two particles; % peak = pairs/s x flops/pair over the peak\n"
-                         "of the tile's width at the same thread count:\n";
-            std::printf("%-8s %6s %3s %6s %19s %9s %6s %8s %7s\n", "tiles", "N", "thr", "calls", "ms/call (best)", "pairs/s",
-                        "flops", "GFLOP/s", "% peak");
-        }
-        for (std::size_t n : sizes) {
-            for (PairKernelVariant variant : variants) {
-                for (int t : thread_counts) {
-                    const Measurement m = measure_kernel(variant, n, t, 0.25 * budget);
-                    const double rate = m.measured ? m.pairs_per_tick / m.median_s : 0.0;
-                    const int flops = PairForceKernel::flops_per_pair(variant);
-                    const double peak = peak_of(variant, t), gflops = rate * flops / 1e9;
-                    const double fraction = peak > 0.0 ? rate * flops / peak : 0.0;
-                    kernel_rows.push_back({{"tiles", PairForceKernel::name(variant)}, {"particles", n}, {"threads", t},
-                                           {"calls_measured", m.ticks}, {"ms_per_call_median", ms(m.median_s)},
-                                           {"ms_per_call_best", ms(m.best_s)}, {"pairs_per_second", rate},
-                                           {"flops_per_pair", flops}, {"gflops", gflops}, {"peak_gflops", peak / 1e9},
-                                           {"fraction_of_peak", fraction}});
-                    if (!json) {
-                        char timing[40];
-                        std::snprintf(timing, sizeof timing, "%.4g (%.4g)", ms(m.median_s), ms(m.best_s));
-                        std::printf("%-8s %6zu %3d %6d %19s %9s %6d %8.1f %6.0f%%\n", PairForceKernel::name(variant), n, t,
-                                    m.ticks, timing, si(rate).c_str(), flops, gflops, 100.0 * fraction);
-                    }
-                }
-            }
-        }
-        std::cout.flush();
-    }
+    KernelSection kernel_alone;
+    if (kernels) kernel_alone = kernel_section(sizes, thread_counts, budget, quick, json);
 
     // --- Bundled meshes ------------------------------------------------------------------------
     std::vector<std::string> skipped;
@@ -1303,76 +1397,11 @@ int bench_command(int argc, char** argv) {
     if (!json && !one_section) std::cout << "\nfast kernel against the others (medians from the rows above):\n" << ratio_text.str();
 
     // --- The largest cloud that runs in real time (a tick in at most dt), all threads ----------
-    nlohmann::ordered_json real_time = nullptr;
-    if (search) {
-        if (!json) {
-            std::cout << "\nsearching the largest cloud that runs in real time: median tick within " << dt
-                      << " s (fast kernel, " << threads << " threads; a size that misses it although some of its ticks"
-                      << " made it is measured once more)...\n";
-        }
-        std::size_t lo = 0, hi = kMaxParticles + 1;  // lo runs in real time, hi does not (none yet: above the max)
-        Measurement at_lo, at_hi;
-        for (const Row& r : rows) {
-            if (r.scene.rfind("cloud:", 0) != 0 || r.kernel != fast_name || r.m.threads != threads || !r.m.measured || r.m.diverged) continue;
-            if (r.m.median_s <= dt && r.n > lo) {
-                lo = r.n;
-                at_lo = r.m;
-            }
-            if (r.m.median_s > dt && r.n < hi) {
-                hi = r.n;
-                at_hi = r.m;
-            }
-        }
-        const std::size_t resolution = quick ? 500 : 50;
-        const double probe_budget = quick ? 0.1 : std::max(0.3, 0.4 * budget);
-        if (lo > 0 && hi > lo) {
-            auto probe = [&](std::size_t n) {
-                Measurement m = measure(Kernel::Fast, cloud(n), threads, probe_budget);
-                if (m.measured && m.median_s > dt && m.best_s <= dt) {
-                    // Some ticks were fast enough: other work may have slowed the rest. Once more.
-                    const Measurement again = measure(Kernel::Fast, cloud(n), threads, probe_budget);
-                    if (again.measured && again.median_s < m.median_s) m = again;
-                }
-                const bool real = m.measured && !m.diverged && m.median_s <= dt;
-                log << "  N " << n << ": " << m.substeps << " substeps, " << ms(m.median_s) << " ms/tick"
-                    << (real ? " (real time)" : "") << "\n";
-                if (real) lo = n, at_lo = m;
-                else hi = n, at_hi = m;
-            };
-            while (hi > kMaxParticles && lo < kMaxParticles) probe(std::min(2 * lo, kMaxParticles));  // find a too-slow size
-            while (hi <= kMaxParticles && hi - lo > resolution) probe((lo + hi) / 2 / 10 * 10);
-            real_time = {{"largest_particles", lo},   {"substeps", at_lo.substeps},
-                         {"ms_per_tick", ms(at_lo.median_s)}, {"threads", at_lo.threads},
-                         {"first_too_slow", hi},      {"first_too_slow_substeps", at_hi.substeps},
-                         {"first_too_slow_ms_per_tick", ms(at_hi.median_s)}, {"resolution", resolution}};
-            if (!json) {
-                std::printf("largest real-time cloud: N = %zu with %d substeps, %.2f ms a tick (%.1f ticks/s)", lo,
-                            at_lo.substeps, ms(at_lo.median_s), 1.0 / at_lo.median_s);
-                if (hi <= kMaxParticles) std::printf("; N = %zu takes %.2f ms (%d substeps)", hi, ms(at_hi.median_s), at_hi.substeps);
-                std::printf("\n");
-            }
-        } else if (!json) {
-            std::cout << "none of the measured sizes runs in real time\n";
-        }
-    }
+    const nlohmann::ordered_json real_time =
+        search ? search_real_time(rows, fast_name, dt, threads, budget, quick, json, log) : nlohmann::ordered_json(nullptr);
 
     // --- Memory ---------------------------------------------------------------------------------
-    nlohmann::ordered_json memory = nlohmann::ordered_json::array();
-    if (!json && !one_section) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
-    for (std::size_t n : {std::size_t(10000), std::size_t(20000)}) {
-        if (one_section) break;
-        const double mb = 1e6;
-        const double kernel = double(PairForceKernel::memory_bytes(n)) / mb;
-        const double stored_l0 = double(n) * double(n - 1) / 2.0 * 4.0 / mb;
-        const double tables = 3.0 * double(n) * double(n) * 4.0 / mb;
-        memory.push_back({{"particles", n}, {"fast_kernel_mb", kernel}, {"stored_rest_lengths_mb", stored_l0},
-                          {"baseline_tables_mb", tables}});
-        if (!json) {
-            std::printf("  N %5zu: fast kernel %.1f (packed state + per-tile partial forces; rest lengths recomputed); "
-                        "one float l0 per pair would add %.0f; the baseline's N x N k, c, l0 tables take %.0f\n",
-                        n, kernel, stored_l0, tables);
-        }
-    }
+    const nlohmann::ordered_json memory = memory_section(one_section, json);
     if (!json && !skipped.empty()) {
         std::cout << "\nmeshes not benched:\n";
         for (const std::string& s : skipped) std::cout << "  " << s << "\n";
@@ -1415,10 +1444,10 @@ int bench_command(int argc, char** argv) {
             {"seconds_per_measurement", budget},
             {"quick", quick},
             {"rows", rows_json},
-            {"kernel_alone", kernel_rows},
+            {"kernel_alone", kernel_alone.rows},
             {"ratios", ratios},
             {"real_time", real_time},
-            {"peak", peak_json},
+            {"peak", kernel_alone.peak},
             {"memory", memory},
             {"scale", scale_json},
             {"busy", busy_json},
