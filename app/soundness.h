@@ -41,8 +41,8 @@ struct Soundness {
 Soundness soundness(std::span<const RigidBody> defs, std::span<const BodyNow> now, std::optional<double> ground_height,
                     bool pyramid);
 
-// True for a generated pyramid scene ("pyramid:10").
-inline bool is_pyramid(std::string_view scene) { return scene.rfind("pyramid:", 0) == 0; }
+// True for a generated pyramid scene ("pyramid:10", "stack:10").
+inline bool is_pyramid(std::string_view scene) { return scene.rfind("pyramid:", 0) == 0 || scene.rfind("stack:", 0) == 0; }
 
 // Lowest point of one of our collision shapes (a sphere exactly, else its hull's vertices).
 double lowest_point(const RigidBody& body, const Vec3d& x, const Mat3& R);

@@ -31,6 +31,7 @@ Part split(std::string_view part) {
     if (colon == std::string_view::npos) return {};
     const std::string_view kind = part.substr(0, colon);
     if (kind != "cloud" && kind != "ball" && kind != "pile" && kind != "boxes" && kind != "pyramid" && kind != "random" &&
+        kind != "bin" && kind != "stack" &&
         kind != "torus" && kind != "lattice" && kind != "cube" && kind != "sheet") {
         return {};
     }
@@ -194,7 +195,7 @@ Mesh cloud(std::size_t n) {
 
 // A fixed bin for n bodies in layers of side x side at `pitch`: four walls 0.4 m high on the
 // ground. Returns the side.
-std::size_t bin(std::size_t n, double pitch, const char* prefix, Scene& scene) {
+std::size_t bin(std::size_t n, double pitch, const char* prefix, Scene& scene, double wall_height = 0.4) {
     const std::size_t side = std::max<std::size_t>(3, std::size_t(std::ceil(std::sqrt(double(n) / 2.0))));
     const double half = 0.5 * pitch * double(side) + 0.1;
     const auto wall = [&](const char* name, Vec3d at, Vec3d size) {
@@ -206,10 +207,11 @@ std::size_t bin(std::size_t n, double pitch, const char* prefix, Scene& scene) {
         def.position = at;
         scene.rigid_bodies.push_back(def);
     };
-    wall("_wall_n", {0.0, half + 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
-    wall("_wall_s", {0.0, -half - 0.05, 0.2}, {2.0 * half + 0.2, 0.1, 0.4});
-    wall("_wall_e", {half + 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
-    wall("_wall_w", {-half - 0.05, 0.0, 0.2}, {0.1, 2.0 * half, 0.4});
+    const double h = wall_height;
+    wall("_wall_n", {0.0, half + 0.05, 0.5 * h}, {2.0 * half + 0.2, 0.1, h});
+    wall("_wall_s", {0.0, -half - 0.05, 0.5 * h}, {2.0 * half + 0.2, 0.1, h});
+    wall("_wall_e", {half + 0.05, 0.0, 0.5 * h}, {0.1, 2.0 * half, h});
+    wall("_wall_w", {-half - 0.05, 0.0, 0.5 * h}, {0.1, 2.0 * half, h});
     return side;
 }
 
@@ -308,6 +310,57 @@ void pyramid(std::size_t layers, Scene& scene) {
                 def.position = Vec3d{(double(column) - 0.5 * double(side - 1)) * pitch,
                                      (double(row) - 0.5 * double(side - 1)) * pitch, 0.5 + double(k)};
                 def.friction = 0.6f;
+                def.restitution = 0.0f;
+                scene.rigid_bodies.push_back(def);
+            }
+        }
+    }
+}
+
+// Scenes the solver was not tuned on, as another engine's comparison built them. bin:N: N boxes
+// 0.2 to 0.4 m a side and balls 0.1 to 0.2 m in radius by turns, 1,000 kg/m^3, no rolling
+// resistance, friction 0.5 and restitution 0.2 everywhere (the ground too), dropped into four
+// fixed walls 1 m high.
+void bin_of_boxes_and_balls(std::size_t n, Scene& scene) {
+    const double pitch = 0.5;
+    const std::size_t side = bin(n, pitch, "bin", scene, 1.0);
+    scene.settings.static_friction = scene.settings.dynamic_friction = 0.5f;
+    scene.settings.restitution = 0.2f;
+    std::mt19937 rng(52u);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        RigidBodyDef def;
+        def.name = (i % 2 == 0 ? "box" : "ball") + std::to_string(i / 2 + 1);
+        def.position = layer_position(i, side, pitch) + Vec3d{0.0, 0.0, 0.5 * double(i / (side * side))};
+        def.orientation = Quat::from_degrees_xyz({360.0 * unit(rng), 90.0 * unit(rng), 360.0 * unit(rng)});
+        def.density = 1000.0;
+        def.friction = 0.5f;
+        def.restitution = 0.2f;
+        if (i % 2 == 0) {
+            def.shape = ShapeKind::Box;
+            def.size = {0.2 + 0.2 * unit(rng), 0.2 + 0.2 * unit(rng), 0.2 + 0.2 * unit(rng)};
+        } else {
+            def.shape = ShapeKind::Sphere;
+            def.radius = 0.1 + 0.1 * unit(rng);
+        }
+        scene.rigid_bodies.push_back(def);
+    }
+}
+
+// stack:L: a square pyramid of 1 m cubes of 1 kg, `layers` x `layers` at the bottom, each
+// exactly on the four below it and touching its neighbours in the layer (no gap), friction 0.5.
+void stack(std::size_t layers, Scene& scene) {
+    for (std::size_t k = 0; k < layers; ++k) {
+        const std::size_t side = layers - k;
+        for (std::size_t row = 0; row < side; ++row) {
+            for (std::size_t column = 0; column < side; ++column) {
+                RigidBodyDef def;
+                def.name = "s" + std::to_string(k + 1) + "_" + std::to_string(row + 1) + "_" + std::to_string(column + 1);
+                def.shape = ShapeKind::Box;
+                def.size = Vec3d{1.0, 1.0, 1.0};
+                def.mass = 1.0;
+                def.position = Vec3d{double(column) - 0.5 * double(side - 1), double(row) - 0.5 * double(side - 1), 0.5 + double(k)};
+                def.friction = 0.5f;
                 def.restitution = 0.0f;
                 scene.rigid_bodies.push_back(def);
             }
@@ -441,7 +494,7 @@ Mesh generated_mesh(std::string_view name) {
         return sheet(n, name);
     }
     throw InputError(std::string(name) +
-                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS, lattice:A, cube:S or sheet:N; pile:N, boxes:N, pyramid:L and random:SEED are scenes: use --scene)");
+                     ": not a mesh (a mesh is cloud:N, ball:S, torus:RxS, lattice:A, cube:S or sheet:N; pile:N, boxes:N, pyramid:L, bin:N, stack:L and random:SEED are scenes: use --scene)");
 }
 
 Mesh open_mesh(const std::string& name) { return is_generated(name) ? generated_mesh(name) : load_mesh(name); }
@@ -473,11 +526,15 @@ Scene generated_scene(std::string_view name) {
             boxes(count_of(name, part, kMaxPile), scene);
         } else if (part.kind == "pyramid") {
             pyramid(count_of(name, part, kMaxLayers), scene);
+        } else if (part.kind == "bin") {
+            bin_of_boxes_and_balls(count_of(name, part, kMaxPile), scene);
+        } else if (part.kind == "stack") {
+            stack(count_of(name, part, kMaxLayers), scene);
         } else if (part.kind == "random") {
             random_scene(count_of(name, part, std::size_t(1) << 40), scene);
         } else {
             throw InputError(std::string(name) + ": '" + std::string(text) +
-                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, cube:S, sheet:N, pile:N, boxes:N, pyramid:L or random:SEED");
+                             "' is not cloud:N, ball:S, torus:RxS, lattice:A, cube:S, sheet:N, pile:N, boxes:N, pyramid:L, bin:N, stack:L or random:SEED");
         }
         if (plus == std::string_view::npos) break;
         start = plus + 1;

@@ -20,6 +20,11 @@
 //   boxes:N     a scene of N boxes and balls by turns dropped into a bin as pile:N is
 //   pyramid:L   a scene of a square pyramid of unit boxes, L layers (L x L at the bottom; 10
 //               layers are 385 boxes, 20 are 2,870), standing on the ground
+//   bin:N       N boxes 0.2 to 0.4 m a side and balls 0.1 to 0.2 m in radius by turns, 1,000
+//               kg/m^3, no rolling resistance, friction 0.5 and restitution 0.2, into a bin of
+//               four fixed walls: a scene built as another engine's comparison built it
+//   stack:L     a pyramid of 1 m cubes of 1 kg, each exactly on four below and touching its
+//               neighbours in the layer (no gap), friction 0.5
 //   random:SEED a scene nobody tuned, from its seed (1 and up): two to eight boxes, balls and
 //               cylinders of any size, density, speed, spin, restitution and friction, and a few
 //               fixed obstacles in the air (what the contact fuzz test runs by the hundred)
@@ -37,7 +42,7 @@
 namespace softbody {
 
 // True for "cloud:N", "ball:S", "torus:RxS", "lattice:A", "cube:S", "sheet:N", "pile:N", "boxes:N", "pyramid:L",
-// "random:SEED" and sums of them: a name,
+// "bin:N", "stack:L", "random:SEED" and sums of them: a name,
 // not a file.
 bool is_generated(std::string_view name);
 
