@@ -102,8 +102,13 @@ int hardware_threads();
 // The threads a world runs on unless told otherwise: two, whatever the machine (the same scene
 // gives the same bits at any count; a default that followed the machine would make runs differ in
 // speed, never in results, but the setting would still not be the same everywhere). The pool
-// yields when a core is busy, so two is never much slower than one.
+// yields when a core is busy, so two is never much slower than one. The browser build without
+// threads (a page that is not cross-origin isolated) can start none: one there.
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+inline constexpr int kDefaultThreads = 1;
+#else
 inline constexpr int kDefaultThreads = 2;
+#endif
 
 // Splits [0, count) into consecutive chunks of at least `grain` items (one when there are too
 // few to share, or no pool), a few a thread, and calls f(chunk, begin, end) for each on the
