@@ -11,6 +11,7 @@
 
 #include "gui/app_shell.h"
 #include "gui/asset_files.h"
+#include "gui/setup_link.h"
 #include "gui/tools/lesson.h"
 #include "physics/error.h"
 #include "physics/scene_io.h"
@@ -130,6 +131,10 @@ AppShell::AppShell(const SceneOptions& scene, const WindowOptions& window_option
     last = window->time();
 #if defined(__EMSCRIPTEN__)
     browser::on_state([this] { return state_json(); });  // the shell lives as long as the page
+    // A screen of two or more pixels per CSS pixel (a tablet, a phone) already draws edges
+    // finely, and 4x multisampling there would cost four times its many pixels (100 MB of
+    // buffers at 2048 x 1536): one sample a pixel, unless the Display tool asks for more.
+    if (window->content_scale() >= 2.0f) view.appearance.samples = 1;
 #endif
 }
 
@@ -252,6 +257,8 @@ std::string AppShell::state_json() const {
     };
     const ChangedKeys changed = session->changed_keys();
     out["changed_keys"] = {{"keys", changed.keys}, {"added", changed.added}, {"removed", changed.removed}};
+    const Setup setup = current_setup(*session, launch_scene());  // what the Share tool's link carries
+    out["setup"] = {{"query", setup_query(setup)}, {"command", setup_command(setup)}, {"lost", setup.lost}};
 #if defined(__EMSCRIPTEN__)
     out["ui"] = nlohmann::json::parse(browser::ui_items_json());
 #endif

@@ -21,7 +21,7 @@ namespace {
 // ratio, and the page's GLFW window told that size directly, as its own resize would (its
 // window and framebuffer sizes are both the canvas's pixels). Nonzero when the size changed.
 EM_JS(int, fit_canvas_js, (GLFWwindow* id), {
-    var canvas = Module['canvas'];
+    var canvas = Module["canvas"];
     if (!canvas) return 0;
     var rect = canvas.getBoundingClientRect();
     var ratio = window.devicePixelRatio || 1;
@@ -52,12 +52,12 @@ EM_JS(double, pixel_ratio_js, (), { return window.devicePixelRatio || 1; });
 // the terminating zero: the caller asks again with a larger buffer when that does not fit.
 // what: 0 the page's address without its query, 1 the next file chosen ("" when none).
 EM_JS(int, page_text, (int what, char* buffer, int size), {
-    var text = '';
+    var text = "";
     if (what == 0) {
         text = location.origin + location.pathname;
     } else if (what == 1) {
-        var chosen = Module['softbodyChosen'] || [];
-        text = chosen.length ? chosen[0] : '';
+        var chosen = Module["softbodyChosen"] || [];
+        text = chosen.length ? chosen[0] : "";
         if (size > lengthBytesUTF8(text)) chosen.shift();
     }
     stringToUTF8(text, buffer, size);
@@ -69,19 +69,19 @@ EM_JS(int, page_text, (int what, char* buffer, int size), {
 EM_JS(void, copy_text_js, (const char* text_pointer), {
     var text = UTF8ToString(text_pointer);
     function old_way() {
-        var area = document.createElement('textarea');
+        var area = document.createElement("textarea");
         area.value = text;
-        area.setAttribute('readonly', '');
-        area.style.position = 'fixed';
-        area.style.opacity = '0';
+        area.setAttribute("readonly", "");
+        area.style.position = "fixed";
+        area.style.opacity = "0";
         document.body.appendChild(area);
         area.select();
         var ok = false;
-        try { ok = document.execCommand('copy'); } catch (e) { ok = false; }
+        try { ok = document.execCommand("copy"); } catch (e) { ok = false; }
         area.remove();
-        if (!ok) Module['softbodyCopyFailed'] = true;
+        if (!ok) Module["softbodyCopyFailed"] = true;
     }
-    Module['softbodyCopied'] = text;
+    Module["softbodyCopied"] = text;
     if (navigator.clipboard && navigator.clipboard.writeText) {
         navigator.clipboard.writeText(text).catch(old_way);
     } else {
@@ -90,14 +90,14 @@ EM_JS(void, copy_text_js, (const char* text_pointer), {
 });
 
 EM_JS(int, take_copy_failure_js, (), {
-    var failed = !!Module['softbodyCopyFailed'];
-    Module['softbodyCopyFailed'] = false;
+    var failed = !!Module["softbodyCopyFailed"];
+    Module["softbodyCopyFailed"] = false;
     return failed ? 1 : 0;
 });
 
 // A download: the text as a file the browser saves (its downloads folder, or it asks where).
 EM_JS(void, download_js, (const char* name, const char* text, const char* type), {
-    var link = document.createElement('a');
+    var link = document.createElement("a");
     link.href = URL.createObjectURL(new Blob([UTF8ToString(text)], {type: UTF8ToString(type)}));
     link.download = UTF8ToString(name);
     document.body.appendChild(link);
@@ -110,22 +110,22 @@ EM_JS(void, download_js, (const char* name, const char* text, const char* type),
 // path queued for take_chosen_files(). The input stays in the page (hidden) so that a script
 // driving the page can find it.
 EM_JS(void, choose_file_js, (const char* accept), {
-    var input = document.getElementById('softbody-file');
+    var input = document.getElementById("softbody-file");
     if (!input) {
-        input = document.createElement('input');
-        input.type = 'file';
-        input.id = 'softbody-file';
-        input.style.display = 'none';
+        input = document.createElement("input");
+        input.type = "file";
+        input.id = "softbody-file";
+        input.style.display = "none";
         document.body.appendChild(input);
-        input.addEventListener('change', function() {
+        input.addEventListener("change", function() {
             var files = Array.from(input.files || []);
-            input.value = '';
+            input.value = "";
             files.forEach(function(file) {
                 file.arrayBuffer().then(function(data) {
-                    try { FS.mkdir('/uploads'); } catch (e) {}
-                    var path = '/uploads/' + file.name.replace(/\//g, '_');
+                    try { FS.mkdir("/uploads"); } catch (e) {}
+                    var path = "/uploads/" + file.name.split("/").join("_");
                     FS.writeFile(path, new Uint8Array(data));
-                    (Module['softbodyChosen'] = Module['softbodyChosen'] || []).push(path);
+                    (Module["softbodyChosen"] = Module["softbodyChosen"] || []).push(path);
                 });
             });
         });
@@ -137,13 +137,13 @@ EM_JS(void, choose_file_js, (const char* accept), {
 // The presets folder kept in the browser's storage (mounted by the page before the app
 // starts); one save at a time, and one more after it when asked meanwhile.
 EM_JS(void, store_presets_js, (), {
-    if (!Module['softbodyPresetsMounted']) return;
-    var state = Module['softbodyStoring'] = Module['softbodyStoring'] || {busy: false, again: false};
+    if (!Module["softbodyPresetsMounted"]) return;
+    var state = Module["softbodyStoring"] = Module["softbodyStoring"] || {busy: false, again: false};
     function store() {
         state.busy = true;
         FS.syncfs(false, function(error) {
             state.busy = false;
-            if (error) console.warn('softbody: the presets could not be kept in this browser: ' + error);
+            if (error) console.warn("softbody: the presets could not be kept in this browser: " + error);
             if (state.again) {
                 state.again = false;
                 store();
@@ -183,7 +183,7 @@ std::string presets_signature() {
     for (const auto& entry : std::filesystem::directory_iterator(presets_folder(), error)) {
         std::error_code e;
         signature += entry.path().filename().string() + ':' + std::to_string(entry.file_size(e)) + ':' +
-                     std::to_string(entry.last_write_time(e).time_since_epoch().count()) + '\n';
+                     std::to_string(static_cast<long long>(entry.last_write_time(e).time_since_epoch().count())) + '\n';
     }
     return signature;
 }

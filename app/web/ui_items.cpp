@@ -57,7 +57,11 @@ void ImGuiTestEngineHook_ItemAdd(ImGuiContext* context, const ImRect& rect, ImGu
     Item item;
     item.id = id;
     item.rect = rect;
-    if (context->CurrentWindow) item.window = context->CurrentWindow->Name;
+    if (ImGuiWindow* window = context->CurrentWindow) {
+        item.window = window->Name;
+        // A window's fold arrow has no label of its own: it is listed by its id's name.
+        if (id == window->GetIDNoKeepAlive("#COLLAPSE")) item.label = "#COLLAPSE";
+    }
     all.items.push_back(std::move(item));
 }
 
