@@ -174,7 +174,7 @@ Scene SceneOptions::resolve() const {
     if (lesson != 0 && !scene.empty()) throw UsageError("give --scene or --lesson, not both");
     Scene resolved;
     if (lesson != 0) resolved = load_scene(lesson_path(lesson));
-    else if (!scene.empty()) resolved = load_scene(find_scene(scene));
+    else if (!scene.empty()) resolved = is_generated(scene) ? load_scene(scene) : load_scene_file(find_scene(scene));
     else if (mesh.empty()) resolved = load_scene(default_scene_path());
     if (!mesh.empty()) {
         // A mesh brought on the command line: every soft body's (or, in a scene without one, a
@@ -205,6 +205,38 @@ std::string assets_dir() {
     return dir;
 }
 std::string default_scene_path() { return assets_dir() + "/scenes/default.json"; }
+
+Scene load_scene_file(const std::string& path) {
+    Scene scene = load_scene(path);
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    const std::filesystem::path assets(assets_dir());
+    const auto find = [&](std::string& mesh) {
+        std::error_code error;
+        if (mesh.empty() || is_generated(mesh) || std::filesystem::exists(mesh, error)) return;
+        // As the file named it: the reader joined it to the file's folder.
+        const std::filesystem::path named = std::filesystem::path(mesh).lexically_relative(folder.empty() ? "." : folder);
+        if (named.empty() || named.is_absolute() || *named.begin() == "..") return;
+        for (const std::filesystem::path& candidate : {assets.parent_path() / named, assets / named, assets / "meshes" / named}) {
+            if (std::filesystem::exists(candidate, error)) {
+                mesh = candidate.lexically_normal().string();
+                return;
+            }
+        }
+    };
+    for (SoftBodyDef& body : scene.soft_bodies) find(body.mesh);
+    for (RigidBodyDef& body : scene.rigid_bodies) find(body.mesh);
+    return scene;
+}
+
+std::string bundled_name(const std::string& path) {
+    const std::filesystem::path assets = std::filesystem::path(assets_dir()).lexically_normal();
+    std::error_code error;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+    if (error || path.empty()) return {};
+    const std::filesystem::path relative = absolute.lexically_normal().lexically_relative(assets);
+    if (relative.empty() || *relative.begin() == ".." || relative.is_absolute()) return {};
+    return "assets/" + relative.generic_string();
+}
 
 std::string lesson_path(std::int64_t number) {
     if (number < 1 || std::size_t(number) > lessons().size()) {

@@ -71,6 +71,14 @@ struct SceneOptions {
 // Folder of the bundled assets (meshes and scenes): beside the installed executable, or the
 // source tree's the build was made from.
 std::string assets_dir();
+// A scene file, read, with each mesh it names by a relative path that is not beside it looked
+// up in the bundled assets ("assets/meshes/cube.obj" or "meshes/cube.obj" from a preset that
+// was downloaded from the page or moved from the folder it was saved in), as --scene finds a
+// scene from anywhere. Throws InputError as load_scene does.
+Scene load_scene_file(const std::string& path);
+// A bundled file's path as "assets/...", the form that finds it from anywhere (a link, a
+// downloaded preset); empty for a path outside the bundled assets.
+std::string bundled_name(const std::string& path);
 std::string default_scene_path();
 // Lesson `number`'s scene file (from 1, as `softbody lessons` numbers them); UsageError when there is none.
 std::string lesson_path(std::int64_t number);

@@ -12,15 +12,6 @@ namespace softbody::app {
 
 namespace {
 
-// A path under the bundled assets' folder as "assets/...", which the scene option finds from
-// anywhere (cli.cpp, find_scene); empty when it is not under that folder.
-std::string bundled_path(const std::string& path) {
-    const std::filesystem::path assets = std::filesystem::path(assets_dir()).lexically_normal();
-    const std::filesystem::path relative = std::filesystem::path(path).lexically_normal().lexically_relative(assets);
-    if (relative.empty() || *relative.begin() == "..") return {};
-    return "assets/" + relative.generic_string();
-}
-
 bool plain_for_query(char ch) {
     return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' ||
            ch == '.' || ch == '~' || ch == '/' || ch == ':' || ch == ',' || ch == '=';
@@ -73,7 +64,7 @@ Setup current_setup(const Session& session, const SceneOptions& launch) {
                lesson != 0 && std::filesystem::path(session.source()).lexically_normal() ==
                                   std::filesystem::path(lesson_path(std::int64_t(lesson))).lexically_normal()) {
         setup.args.emplace_back("lesson", std::to_string(lesson));
-    } else if (const std::string bundled = bundled_path(session.source());
+    } else if (const std::string bundled = bundled_name(session.source());
                !bundled.empty() && std::filesystem::path(bundled).extension() == ".json") {
         setup.args.emplace_back("scene", bundled);
     } else {

@@ -34,7 +34,9 @@ void on_touch(std::function<void(int phase, int id, float x, float y)> handler);
 // The page's question "what is the app showing?" (the browser tests ask it): JSON.
 void on_state(std::function<std::string()> answer);
 // Where and what the panel's items were in the frame just drawn, as a JSON array of
-// {"label", "x", "y", "w", "h"} in the canvas's pixels (the tests tap them by name).
+// {"label", "window", "x", "y", "w", "h"} in the canvas's pixels (the tests tap them by name):
+// the items shown, each label as it reads (a window's fold arrow as "#COLLAPSE"); an item
+// scrolled out of sight has no label and is left out.
 std::string ui_items_json();
 
 // Files the person chose with choose_file(), put in the page's file system, each taken once.

@@ -71,6 +71,8 @@ void ImGuiTestEngineHook_ItemInfo(ImGuiContext* context, ImGuiID id, const char*
     for (auto it = all.items.rbegin(); it != all.items.rend(); ++it) {
         if (it->id == id) {
             it->label = label;
+            // As a person reads it: without the part after "##" that only keeps the id apart.
+            if (const auto hidden = it->label.find("##"); hidden != std::string::npos) it->label.erase(hidden);
             return;
         }
     }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli.h"
 #include "gui/app_shell.h"
 #include "gui/session.h"
 #include "gui/setup_link.h"
@@ -41,7 +42,7 @@ private:
         ImGui::SameLine();
         if (ImGui::Button("Download preset")) {
             const std::string name = file_stem(c.session) + ".json";
-            browser::download(name, scene_to_json(c.session.scene()), "application/json");
+            browser::download(name, scene_to_json(portable(c.session.scene())), "application/json");
             c.session.set_notice("Downloaded " + name + ": Upload opens it here, and the desktop app opens it with "
                                  "Presets > Load or when it is dropped on the window.");
         }
@@ -64,6 +65,17 @@ private:
     }
 
 #if defined(__EMSCRIPTEN__)
+    // The scene as a file that opens wherever it is put: the bundled meshes it names as
+    // "assets/meshes/...", which the page and the desktop app both find from anywhere (cli.h).
+    static Scene portable(Scene scene) {
+        const auto bundled = [](std::string& mesh) {
+            if (std::string name = bundled_name(mesh); !name.empty()) mesh = std::move(name);
+        };
+        for (SoftBodyDef& body : scene.soft_bodies) bundled(body.mesh);
+        for (RigidBodyDef& body : scene.rigid_bodies) bundled(body.mesh);
+        return scene;
+    }
+
     // The downloaded file's name: the scene's or the mesh's own, else the presets' usual one.
     static std::string file_stem(const Session& session) {
         const std::string stem = std::filesystem::path(session.source()).stem().string();
