@@ -32,12 +32,10 @@
     if (value !== '') args.push(value);
   }
   // A run at a given --size gets a canvas of that size; otherwise the canvas fills the window.
-  // (A rule of the page's, not the canvas's own style, which the page's GLFW clears.)
   const size = /^(\d+)x(\d+)$/.exec(params.get('size') || '');
   if (size) {
-    const rule = document.createElement('style');
-    rule.textContent = '#canvas { width: ' + size[1] + 'px; height: ' + size[2] + 'px; }';
-    document.head.appendChild(rule);
+    canvas.style.width = size[1] + 'px';
+    canvas.style.height = size[2] + 'px';
   }
   if (command !== 'run') {  // a command that only prints: its output on the page
     canvas.style.display = 'none';
