@@ -200,8 +200,15 @@ def tablet(browser, base, work):
     s = frames_later(page, 3, what + ": paused")
     if not s["paused"] or s["ticks"] != ticks:
         raise Failure(f"{what}: tapping Pause did not pause (paused {s['paused']}, ticks {ticks} then {s['ticks']})")
-    # A long press on the (paused) ball: the inspector.
+    # A long press on the (paused) ball: the inspector. (The camera still catches up with the
+    # ball after the drag: the finger goes where the ball stays drawn.)
     s = state(page)
+    for _ in range(12):
+        later = frames_later(page, 1, what + ": the view settles")
+        a, b = s["bodies"][0]["screen"], later["bodies"][0]["screen"]
+        s = later
+        if abs(a[0] - b[0]) + abs(a[1] - b[1]) < 2:
+            break
     ball = s["bodies"][0]
     finger(page, "touchStart", [(ball["screen"][0] / ratio(s), ball["screen"][1] / ratio(s))])
     time.sleep(0.8)
