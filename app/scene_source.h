@@ -24,6 +24,16 @@ std::string find_scene(const std::string& name);
 // InputError as load_scene does (FileError for a file that cannot be read).
 Scene open_scene(const std::string& name);
 
+// A scene file, read, with each mesh it names by a relative path that is not beside it looked
+// up in the bundled assets ("assets/meshes/cube.obj" or "meshes/cube.obj" from a preset that
+// was downloaded from the page or moved from the folder it was saved in), as a scene is found
+// from anywhere. Throws InputError as load_scene does.
+Scene load_scene_file(const std::string& path);
+
+// A bundled file's path as "assets/...", the form that finds it from anywhere (a link, a
+// downloaded preset); empty for a path outside the bundled assets.
+std::string bundled_name(const std::string& path);
+
 // Throws InputError when the scene has nothing to simulate (no body of either kind).
 void require_bodies(const Scene& scene);
 

@@ -1,6 +1,9 @@
 // The page's side of softbody in the browser (index.html): reads the address's parameters into
 // the app's command line, checks that the browser can run it, picks the build, shows progress
-// and errors, and hands the app its canvas. Everything else is the app's own C++.
+// and errors, and hands the app its canvas, the fingers on it (a touch screen), a folder for
+// presets that outlives the page, and a fullscreen button. It answers the question "what is the
+// app showing?" (softbodyState(), for the browser tests). Everything else is the app's own C++
+// (app/web/browser.h).
 'use strict';
 
 (function () {
@@ -67,12 +70,37 @@
   console.log('softbody: ' + (build === 'threads' ? 'the threaded build (' + navigator.hardwareConcurrency +
               ' hardware threads)' : 'the one-thread build') + ': ' + args.join(' '));
 
+  // --- Presets that outlive the page --------------------------------------------------------
+  // The app keeps presets under $XDG_DATA_HOME/softbody/presets; here that folder is in the
+  // browser's IndexedDB for this site, read before the app starts and written back by the app
+  // after each change (browser.h, store_presets). Without IndexedDB (some private windows) the
+  // presets last as long as the page.
+  const storage = '/browser-storage';
+  function mountPresets() {
+    ENV.XDG_DATA_HOME = storage;
+    if (typeof IDBFS === 'undefined' || !self.indexedDB) return;
+    try {
+      FS.mkdir(storage);
+      FS.mount(IDBFS, {}, storage);
+    } catch (e) {
+      console.warn('softbody: no folder for presets in this browser: ' + e);
+      return;
+    }
+    addRunDependency('softbody-presets');
+    FS.syncfs(true, function (error) {
+      if (error) console.warn('softbody: the presets kept in this browser could not be read: ' + error);
+      else window.Module.softbodyPresetsMounted = true;
+      removeRunDependency('softbody-presets');
+    });
+  }
+
   const kernel = params.get('kernel');
   window.Module = {
     canvas: canvas,
     arguments: args,
     preRun: [function () {
       if (kernel) ENV.SOFTBODY_KERNEL = kernel;  // read by the pair kernel (getenv)
+      mountPresets();
     }],
     print: function (text) {
       console.log(text);
@@ -96,6 +124,62 @@
     onAbort: function (what) { fail('softbody stopped: ' + what); },
   };
   window.addEventListener('error', function (event) { fail(String(event.message || event)); });
+
+  // --- Fingers on the canvas ----------------------------------------------------------------
+  // The app reads the gestures itself (app/gui/input.h, TouchGestures): each finger's down,
+  // move, up or cancel, with its position in the canvas's pixels. The page's GLFW would take a
+  // finger for a mouse button without a position: it never sees them (this listener, on the
+  // window and capturing, comes first), and neither does the browser, which would scroll, zoom
+  // the page or make mouse events of them.
+  const phases = {touchstart: 0, touchmove: 1, touchend: 2, touchcancel: 3};
+  function onTouch(event) {
+    if (event.target !== canvas) return;
+    event.preventDefault();
+    event.stopPropagation();
+    const app = window.Module;
+    if (!app || !app.calledRun || !app._softbody_touch) return;
+    const rect = canvas.getBoundingClientRect();
+    const sx = canvas.width / Math.max(1, rect.width), sy = canvas.height / Math.max(1, rect.height);
+    for (const touch of event.changedTouches) {
+      app._softbody_touch(phases[event.type], touch.identifier, (touch.clientX - rect.left) * sx,
+                          (touch.clientY - rect.top) * sy);
+    }
+  }
+  for (const type of Object.keys(phases)) window.addEventListener(type, onTouch, {capture: true, passive: false});
+
+  // --- What the app shows -------------------------------------------------------------------
+  // The app's answer as an object (AppShell::state_json): the scene, the bodies and where they
+  // are drawn, the camera, the canvas, the panel's items, the link's setup; null before it runs.
+  window.softbodyState = function () {
+    const app = window.Module;
+    if (!app || !app.calledRun || !app._softbody_state) return null;
+    return JSON.parse(app.UTF8ToString(app._softbody_state()));
+  };
+
+  // --- Fullscreen ---------------------------------------------------------------------------
+  // The canvas follows the page's size at the screen's pixel density (browser.h, fit_canvas),
+  // so fullscreen only has to make the page as large as the screen. Hidden where a browser has
+  // no fullscreen for a page (an iPhone's Safari: "Add to Home Screen" does that there).
+  const fullscreen = document.getElementById('fullscreen');
+  const root = document.documentElement;
+  const request = root.requestFullscreen || root.webkitRequestFullscreen;
+  const leave = document.exitFullscreen || document.webkitExitFullscreen;
+  const current = function () { return document.fullscreenElement || document.webkitFullscreenElement; };
+  if (command === 'run' && request && (document.fullscreenEnabled || document.webkitFullscreenEnabled)) {
+    fullscreen.style.display = 'block';
+    fullscreen.addEventListener('click', function () {
+      const asked = current() ? leave.call(document) : request.call(root);
+      if (asked && asked.catch) asked.catch(function (e) { console.warn('softbody: fullscreen: ' + e); });
+    });
+    const label = function () {
+      fullscreen.title = current() ? 'Leave fullscreen (Esc)' : 'Fullscreen';
+      fullscreen.setAttribute('aria-label', fullscreen.title);
+      fullscreen.classList.toggle('on', !!current());
+    };
+    document.addEventListener('fullscreenchange', label);
+    document.addEventListener('webkitfullscreenchange', label);
+    label();
+  }
 
   const script = document.createElement('script');
   script.src = build === 'threads' ? 'softbody-threads.js' : 'softbody.js';

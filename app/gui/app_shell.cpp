@@ -5,13 +5,20 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "gui/app_shell.h"
+#include "gui/asset_files.h"
+#include "gui/setup_link.h"
 #include "gui/tools/lesson.h"
 #include "physics/error.h"
 #include "physics/scene_io.h"
 #include "render/image.h"
+#if defined(__EMSCRIPTEN__)
+#include "web/browser.h"
+#endif
 
 namespace softbody::app {
 
@@ -77,6 +84,11 @@ void run_script_command(Session& session, View& view, const ScriptCommand& comma
     }
 }
 
+SceneOptions& launch_options() {
+    static SceneOptions options;
+    return options;
+}
+
 // The first world. A scene that cannot load is shown as an error over the default scene, not a
 // dead window.
 std::unique_ptr<Session> make_session(const SceneOptions& scene) {
@@ -104,18 +116,28 @@ std::unique_ptr<Session> make_session(const SceneOptions& scene) {
 
 }  // namespace
 
+const SceneOptions& launch_scene() { return launch_options(); }
+
 AppShell::AppShell(const SceneOptions& scene, const WindowOptions& window_options, std::int64_t frame_count,
                  double seconds_per_frame, std::vector<ScriptCommand> commands, std::string screenshot)
     : frames(frame_count), frame_time(seconds_per_frame), scripted(frame_count >= 0), script(std::move(commands)),
       screenshot_path(std::move(screenshot)), session(make_session(scene)), window(std::make_unique<Window>(window_options)),
       renderer(std::make_unique<render::Renderer>(reinterpret_cast<render::Loader>(glfwGetProcAddress))),
       panels(window->content_scale()) {
+    launch_options() = scene;
     panels.attach(*session);
     panels.recorder = &recorder;
     view.set_view(float(window->framebuffer_width()) / float(std::max(1, window->framebuffer_height())), panel_shift());
     view.start(*session);
     loads_seen = session->loads();
     last = window->time();
+#if defined(__EMSCRIPTEN__)
+    browser::on_state([this] { return state_json(); });  // the shell lives as long as the page
+    // A screen of two or more pixels per CSS pixel (a tablet, a phone) already draws edges
+    // finely, and 4x multisampling there would cost four times its many pixels (100 MB of
+    // buffers at 2048 x 1536): one sample a pixel, unless the Display tool asks for more.
+    if (window->content_scale() >= 2.0f) view.appearance.samples = 1;
+#endif
 }
 
 bool AppShell::run_frame() {
@@ -126,12 +148,17 @@ bool AppShell::run_frame() {
     const float ui_scale = window->content_scale();
     view.set_view(width / height, panel_shift());
 
-    // Input: the person's (unless the UI has it), then the script's for this frame.
+    // Input: the person's (unless the UI has it: a finger's gestures on the view are for the
+    // view, as the window decided where it landed), then the script's for this frame.
     const ImGuiIO& io = ImGui::GetIO();
+    // Keys are the panel's while a field is typed into or the panel is moved through with the
+    // keyboard (its focus shows); a panel that was only clicked leaves Space, R, M to the view.
+    const bool panel_keys = io.WantTextInput || (io.NavActive && io.NavVisible) || ImGui::IsAnyItemActive();
     for (const InputEvent& event : window->take_events()) {
-        const bool mouse = event.type != InputEvent::Type::Key;
-        if ((mouse && io.WantCaptureMouse && !session->world().grab()) || (!mouse && io.WantCaptureKeyboard)) continue;
-        handle(event, width, height, ui_scale);
+        const bool mouse = event.type != InputEvent::Type::Key && !event.touch;
+        if ((mouse && io.WantCaptureMouse && !session->world().grab()) || (event.type == InputEvent::Type::Key && panel_keys)) continue;
+        // A fingertip is wider than a mouse's point: it picks within a wider circle.
+        handle(event, width, height, event.touch ? 1.6f * ui_scale : ui_scale);
     }
     for (; next_command < script.size() && script[next_command].frame <= frame - script_start; ++next_command) {
         const ScriptCommand& command = script[next_command];
@@ -179,6 +206,68 @@ bool AppShell::run_frame() {
     window->swap_buffers();
     if (frame == kWarmupFrames) after_warmup = resident_memory();
     return true;
+}
+
+std::string AppShell::state_json() const {
+    const World& world = session->world();
+    const float width = float(window->framebuffer_width()), height = float(std::max(1, window->framebuffer_height()));
+    const glm::mat4 to_clip = view.camera.projection(width / height) * view.camera.view();
+    // Where a point is drawn, in the canvas's pixels (y down).
+    const auto on_screen = [&](double x, double y, double z) {
+        const glm::vec4 clip = to_clip * glm::vec4(float(x), float(y), float(z), 1.0f);
+        if (!(clip.w > 0.0f)) return nlohmann::json(nullptr);
+        return nlohmann::json{(clip.x / clip.w + 1.0f) * 0.5f * width, (1.0f - clip.y / clip.w) * 0.5f * height};
+    };
+    nlohmann::json bodies = nlohmann::json::array();
+    for (std::size_t b = 0; b < world.soft_body_count(); ++b) {
+        const Vec3 c = world.center_of_mass(b);
+        bodies.push_back({{"name", world.soft_body(b).name()}, {"rigid", false}, {"position", {c.x, c.y, c.z}},
+                          {"screen", on_screen(c.x, c.y, c.z)}});
+    }
+    for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
+        const RigidMotion m = world.rigid_motion(b);
+        const RigidBody& body = world.rigid_body(b);
+        nlohmann::json entry{{"name", body.name}, {"rigid", true}, {"fixed", body.fixed}, {"position", {m.x.x, m.x.y, m.x.z}},
+                             {"screen", on_screen(m.x.x, m.x.y, m.x.z)}};
+        if (body.shape == ShapeKind::Sphere) {
+            // How large the ball is drawn: its radius in pixels, sideways and up (equal unless
+            // the picture is stretched or the ball is near the edge of a wide view).
+            const glm::vec3 right = view.camera.right() * float(body.radius), up = view.camera.up() * float(body.radius);
+            entry["screen_right"] = on_screen(m.x.x + right.x, m.x.y + right.y, m.x.z + right.z);
+            entry["screen_up"] = on_screen(m.x.x + up.x, m.x.y + up.y, m.x.z + up.z);
+        }
+        bodies.push_back(std::move(entry));
+    }
+    std::vector<std::string> presets;
+    for (const std::string& file : list_files(presets_folder(), {".json"})) presets.push_back(file);
+    nlohmann::json out = {
+        {"frame", frame_number},
+        {"source", session->source()},
+        {"loads", session->loads()},
+        {"title", session->lesson().title},
+        {"ticks", world.ticks()},
+        {"time", world.time()},
+        {"paused", session->paused},
+        {"grabbing", bool(world.grab())},
+        {"inspecting", session->particle_inspection().has_value() || session->rigid_inspection().has_value()},
+        {"bodies", bodies},
+        {"camera", {{"target", {view.camera.target.x, view.camera.target.y, view.camera.target.z}},
+                    {"distance", view.camera.distance}, {"yaw", view.camera.yaw}, {"pitch", view.camera.pitch}}},
+        {"canvas", {{"width", window->framebuffer_width()}, {"height", window->framebuffer_height()}}},
+        {"ui_scale", window->content_scale()},
+        {"panel", {{"shown", panels.show_panels}, {"width", panels.width()}}},
+        {"notice", session->notice()},
+        {"error", session->error()},
+        {"presets", presets},
+    };
+    const ChangedKeys changed = session->changed_keys();
+    out["changed_keys"] = {{"keys", changed.keys}, {"added", changed.added}, {"removed", changed.removed}};
+    const Setup setup = current_setup(*session, launch_scene());  // what the Share tool's link carries
+    out["setup"] = {{"query", setup_query(setup)}, {"command", setup_command(setup)}, {"lost", setup.lost}};
+#if defined(__EMSCRIPTEN__)
+    out["ui"] = nlohmann::json::parse(browser::ui_items_json());
+#endif
+    return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 void AppShell::handle(const InputEvent& event, float width, float height, float ui_scale) {

@@ -23,6 +23,11 @@
 
 namespace softbody::app {
 
+// What the app was started with (--scene or --lesson, --mesh, --set): while the session still
+// shows its first world, a link or a command line that gives that world names these (the
+// Share tool), as the world's own record of its start already holds the --set keys.
+const SceneOptions& launch_scene();
+
 class AppShell {
 public:
     // With frame_count >= 0, runs that many frames of seconds_per_frame each, replaying the
@@ -32,6 +37,10 @@ public:
              std::vector<ScriptCommand> commands, std::string screenshot);
     bool run_frame();  // one frame; false once the scripted frames are done or the window is closed
     void summarise();  // the JSON summary on stdout (run_summary.cpp)
+    // What the app shows now, as JSON: the page's state question (app/web/browser.h), which the
+    // browser tests ask: the scene, the bodies and where they are drawn, the camera, the canvas,
+    // the panel and its items, the notice.
+    std::string state_json() const;
 
 private:
     // The panels cover the left of the window: frame the body in the rest of it.

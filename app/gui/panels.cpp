@@ -92,10 +92,7 @@ void Panels::error_banner(Session& demo, View&) {
         notice_banner(demo);
         return;
     }
-    const ImGuiViewport* viewport = ImGui::GetMainViewport();
-    const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
-    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    place_banner();
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.45f, 0.08f, 0.08f, 0.94f));
     ImGui::Begin("##error", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushTextWrapPos(0.0f);
@@ -113,13 +110,26 @@ void Panels::error_banner(Session& demo, View&) {
     ImGui::PopStyleColor();
 }
 
+// An error or a notice: at the top right, beside the panel; on a screen too narrow for both
+// (a phone), across the bottom, where the folded panel is not.
+void Panels::place_banner() const {
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float margin = 12 * scale_;
+    const float beside = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
+    if (beside >= 240 * scale_) {
+        ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - beside - margin, viewport->WorkPos.y + margin));
+        ImGui::SetNextWindowSize(ImVec2(beside, 0));
+    } else {
+        ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + margin, viewport->WorkPos.y + viewport->WorkSize.y - margin), ImGuiCond_Always,
+                                ImVec2(0.0f, 1.0f));
+        ImGui::SetNextWindowSize(ImVec2(viewport->WorkSize.x - 2 * margin, 0));
+    }
+}
+
 // A notice (what an action did) at the top right, until dismissed or replaced.
 void Panels::notice_banner(Session& session) {
     if (session.notice().empty()) return;
-    const ImGuiViewport* viewport = ImGui::GetMainViewport();
-    const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
-    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    place_banner();
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.08f, 0.30f, 0.20f, 0.94f));
     ImGui::Begin("##notice", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushTextWrapPos(0.0f);

@@ -33,6 +33,7 @@ private:
     void help();
     void error_banner(Session& session, View& view);
     void notice_banner(Session& session);
+    void place_banner() const;
 
     float scale_;  // the screen's content scale
     std::vector<std::unique_ptr<Tool>> tools_;

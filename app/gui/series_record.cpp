@@ -42,10 +42,14 @@ void SeriesRecord::cut_after(World& world) {
     ledger_.resume(world, series_->column(Series::kDissipated)[keep - 1]);
 }
 
-void SeriesRecord::write_csv(const std::string& path, bool overwrite) const {
+std::string SeriesRecord::csv() const {
     std::ostringstream text;
     if (series_) series_->write_csv(text);
-    write_text_file(path, text.str(), overwrite ? Overwrite::Yes : Overwrite::No);
+    return text.str();
+}
+
+void SeriesRecord::write_csv(const std::string& path, bool overwrite) const {
+    write_text_file(path, csv(), overwrite ? Overwrite::Yes : Overwrite::No);
 }
 
 }  // namespace softbody::app

@@ -31,6 +31,7 @@ public:
     // The rows as CSV (RFC 4180) into `path`; an existing file is replaced only with `overwrite`.
     // Throws InputError with one line saying what went wrong.
     void write_csv(const std::string& path, bool overwrite) const;
+    std::string csv() const;  // the same text (the page hands it to the browser as a download)
 
 private:
     static std::size_t things(const World& world);

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "cli.h"
 #include "physics/error.h"
 #include "physics/generated.h"
 
@@ -45,7 +46,7 @@ void Session::after_load(const Scene& scene) {
 
 bool Session::load_scene_file(const std::string& path) {
     try {
-        const Scene scene = load_scene(path);
+        const Scene scene = softbody::app::load_scene_file(path);  // bundled meshes found from anywhere (cli.h)
         if (!load(scene)) return false;
         source_ = path;
         return true;

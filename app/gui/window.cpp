@@ -6,8 +6,11 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>  // the panel's windows, for where a finger lands
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <stdexcept>
 
 #if defined(__EMSCRIPTEN__)
@@ -39,6 +42,7 @@ struct WindowCallbacks {
         int width = 1, height = 1;
         glfwGetWindowSize(w, &width, &height);
         Window& win = self(w);
+        if (!win.touches_.active()) win.ui_from_touch_ = false;  // a mouse: the panel follows it again
         win.cursor_x_ = static_cast<float>(x / std::max(width, 1));
         win.cursor_y_ = static_cast<float>(y / std::max(height, 1));
         InputEvent e;
@@ -83,7 +87,7 @@ Window::Window(const WindowOptions& options) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-#if !defined(__EMSCRIPTEN__)  // the browser's GLFW (3.2) has no content scale: the page is in CSS pixels
+#if !defined(__EMSCRIPTEN__)  // the browser's GLFW (3.2) has none: the page gives the pixel ratio
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
 #endif
     glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
@@ -109,7 +113,19 @@ Window::Window(const WindowOptions& options) {
     glfwSetScrollCallback(window_, WindowCallbacks::scroll);
     glfwSetKeyCallback(window_, WindowCallbacks::key);
 
-#if !defined(__EMSCRIPTEN__)
+#if defined(__EMSCRIPTEN__)
+    // The canvas has a pixel for each of the screen's (browser::fit_canvas): the UI is scaled
+    // by the same ratio, so its text is sharp and as large on the screen as at 1x. (Set once:
+    // a page zoomed later keeps the UI's size, while the picture follows.)
+    content_scale_ = browser::pixel_ratio();
+    browser::on_touch([this](int phase, int id, float x, float y) {
+        touch(phase == 0 ? TouchGestures::Phase::Down
+              : phase == 1 ? TouchGestures::Phase::Move
+              : phase == 2 ? TouchGestures::Phase::Up
+                           : TouchGestures::Phase::Cancel,
+              id, x, y);
+    });
+#else
     float sx = 1.0f, sy = 1.0f;
     glfwGetWindowContentScale(window_, &sx, &sy);
     content_scale_ = sx > 0.5f ? sx : 1.0f;
@@ -133,6 +149,9 @@ Window::Window(const WindowOptions& options) {
     io.Fonts->AddFontDefault(&font);
     ImGui_ImplGlfw_InitForOpenGL(window_, true);
 #if defined(__EMSCRIPTEN__)
+    // The page's copy of the UI reports where its items are (app/web/ui_items.cpp): what the
+    // browser tests tap by name.
+    ImGui::GetCurrentContext()->TestEngineHookItems = true;
     ImGui_ImplOpenGL3_Init("#version 300 es");  // WebGL2
 #else
     ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -140,6 +159,9 @@ Window::Window(const WindowOptions& options) {
 }
 
 Window::~Window() {
+#if defined(__EMSCRIPTEN__)
+    browser::on_touch(nullptr);
+#endif
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
@@ -152,8 +174,71 @@ void Window::request_close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void Window::poll_events() {
 #if defined(__EMSCRIPTEN__)
     browser::fit_canvas(window_);  // the page's events arrive by themselves; its layout may have changed
+    for (std::string& file : browser::take_chosen_files()) dropped_.push_back(std::move(file));  // as if dropped
 #endif
     glfwPollEvents();
+    touches_.update(time(), float(framebuffer_width()), float(framebuffer_height()));
+    take_touches();
+}
+
+void Window::touch(TouchGestures::Phase phase, int id, float x, float y) {
+    const bool on_ui = phase == TouchGestures::Phase::Down && ui_at(x, y);
+    ui_from_touch_ = true;
+    touches_.touch(phase, id, x, y, time(), float(framebuffer_width()), float(framebuffer_height()), content_scale_, on_ui);
+    take_touches();
+}
+
+void Window::take_touches() {
+    for (const InputEvent& gesture : touches_.take_events()) {
+        // A keyboard's shift and ctrl count with a finger as with the mouse (a long press is ctrl).
+        InputEvent e = WindowCallbacks::with_modifiers(window_, gesture);
+        e.ctrl = e.ctrl || gesture.ctrl;
+        events_.push_back(e);
+    }
+    // Moves that come faster than frames are merged into the last move; a press or a release
+    // keeps a frame of its own.
+    for (const UiPointer& p : touches_.take_ui()) {
+        if (!p.keep && !ui_queue_.empty()) {
+            UiPointer& last = ui_queue_.back();
+            if (!last.keep && !last.away && last.down == p.down) {
+                last.x = p.x;
+                last.y = p.y;
+                last.scroll += p.scroll;
+                continue;
+            }
+        }
+        ui_queue_.push_back(p);
+    }
+}
+
+bool Window::ui_at(float x, float y) const {
+    const ImGuiContext* g = ImGui::GetCurrentContext();
+    if (!g) return false;
+    if (g->OpenPopupStack.Size > 0) return true;  // an open list: a tap elsewhere closes it, as a click does
+    for (const ImGuiWindow* w : g->Windows) {
+        if (!w->Active || w->Hidden || (w->Flags & ImGuiWindowFlags_NoMouseInputs)) continue;
+        if (w->OuterRectClipped.Contains(ImVec2(x, y))) return true;
+    }
+    return false;
+}
+
+// After the platform backend has set the mouse and before the frame reads it.
+void Window::feed_ui_pointer() {
+    ImGuiIO& io = ImGui::GetIO();
+    if (!ui_queue_.empty()) {
+        ui_pointer_ = ui_queue_.front();
+        ui_queue_.pop_front();
+    }
+    io.MousePos = ui_pointer_.away ? ImVec2(-FLT_MAX, -FLT_MAX) : ImVec2(ui_pointer_.x, ui_pointer_.y);
+    io.MouseDown[0] = ui_pointer_.down;
+    io.MouseDown[1] = io.MouseDown[2] = false;
+    if (ui_pointer_.scroll != 0.0f) {
+        // The content follows the finger: the panel scrolls 5 lines a wheel click.
+        const ImFont* font = io.FontDefault ? io.FontDefault : io.Fonts->Fonts[0];
+        const float step = std::max(1.0f, std::floor(5.0f * font->FontSize * io.FontGlobalScale));
+        io.MouseWheel += ui_pointer_.scroll / step;
+        ui_pointer_.scroll = 0.0f;
+    }
 }
 void Window::swap_buffers() { glfwSwapBuffers(window_); }
 double Window::time() const { return glfwGetTime(); }
@@ -185,6 +270,7 @@ std::vector<std::string> Window::take_dropped_files() {
 void Window::begin_ui_frame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    if (ui_from_touch_) feed_ui_pointer();
     ImGui::NewFrame();
 }
 

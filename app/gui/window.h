@@ -2,6 +2,7 @@
 // ImGui's platform and renderer backends attached. Nothing here knows about the simulation.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,10 +35,16 @@ public:
     void swap_buffers();
     double time() const;  // seconds since start, for the frame clock
 
-    // Framebuffer size in pixels (larger than the window size on high-DPI screens).
+    // Framebuffer size in pixels (larger than the window size on high-DPI screens; in the
+    // browser both are the canvas's pixels).
     int framebuffer_width() const;
     int framebuffer_height() const;
+    // The UI's scale: the screen's (the device's pixel ratio in the browser).
     float content_scale() const { return content_scale_; }
+
+    // A finger on the window (the page's touch screen), in framebuffer pixels: what it does
+    // arrives as take_events()' events (touch set) for the view, or as the panel's pointer.
+    void touch(TouchGestures::Phase phase, int id, float x, float y);
 
     // Files dropped on the window, and mouse/keyboard events, each taken once.
     std::vector<std::string> take_dropped_files();
@@ -50,11 +57,21 @@ public:
     void end_ui_frame();
 
 private:
+    bool ui_at(float x, float y) const;  // the panel, a banner or an open list is there
+    void take_touches();
+    void feed_ui_pointer();
+
     GLFWwindow* window_ = nullptr;
     float content_scale_ = 1.0f;
     std::vector<std::string> dropped_;
     std::vector<InputEvent> events_;
     float cursor_x_ = 0.0f, cursor_y_ = 0.0f;  // last pointer position, fractions of the window
+    TouchGestures touches_;
+    // The panel's pointer while fingers work it, one state a frame (input.h, UiPointer); from
+    // the first touch until a mouse moves, the panel sees this pointer instead of the mouse.
+    std::deque<UiPointer> ui_queue_;
+    UiPointer ui_pointer_;
+    bool ui_from_touch_ = false;
 
     friend struct WindowCallbacks;
 };

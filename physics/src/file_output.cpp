@@ -70,14 +70,24 @@ void write_text_file(const std::string& path, const std::string& text, Overwrite
     }
     if (overwrite == Overwrite::No) {
         // link() refuses to replace an existing name: no window for a race to clobber a file.
-        if (::link(temp.c_str(), path.c_str()) != 0) {
-            const int saved_errno = errno;
+        if (::link(temp.c_str(), path.c_str()) == 0) {
             ::unlink(temp.c_str());
-            errno = saved_errno;
-            if (errno == EEXIST) throw InputError(path + ": already exists; not overwriting it");
-            io_error(path, "cannot save");
+        } else {
+            int saved_errno = errno;
+            // A file system without hard links (the browser's, FAT, some network ones): the name
+            // is checked free, then taken by rename (a writer racing for it in between could be
+            // replaced: that window exists only there).
+            if (saved_errno == EMLINK || saved_errno == EPERM || saved_errno == ENOSYS || saved_errno == EOPNOTSUPP) {
+                if (fs::exists(fs::symlink_status(target, ec))) saved_errno = EEXIST;
+                else saved_errno = ::rename(temp.c_str(), path.c_str()) == 0 ? 0 : errno;
+            }
+            if (saved_errno != 0) {
+                ::unlink(temp.c_str());
+                errno = saved_errno;
+                if (errno == EEXIST) throw InputError(path + ": already exists; not overwriting it");
+                io_error(path, "cannot save");
+            }
         }
-        ::unlink(temp.c_str());
     } else if (::rename(temp.c_str(), path.c_str()) != 0) {
         const int saved_errno = errno;
         ::unlink(temp.c_str());

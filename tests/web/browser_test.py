@@ -26,8 +26,21 @@ Cases (all must pass):
   drop_record a mesh file dropped onto the page (an HTML drop event carrying assets/meshes/cube.obj)
               becomes the body (the summary's mesh and 8 particles), and the M key records:
               the summary's recording, and a WebM file the browser downloads.
+  tablet      a 1024x768 tablet at pixel ratio 2, by touch (tests/web/touch_cases.py): the canvas
+              has a pixel for each of the screen's; a finger drags the ball up; taps on the
+              panel's Pause and Reset work; a pinch zooms, two fingers pan, one on the sky orbits;
+              a long press inspects.
+  phone       a 390x844 phone at ratio 2: the panel starts folded, a tap on its arrow unfolds it,
+              and Pause answers a tap there.
+  copy_link   a finger drags a slider (a changed key); Share > Copy link puts an address on the
+              clipboard whose page has the same setup, and whose run of 60 fixed frames has the
+              native build's state hash for the same command line.
+  presets     Share > Download preset saves a scene file the native build loads; Share > Upload
+              opens it again through the file chooser; a preset saved in the page is there in
+              the site's next page.
+  screenshots lesson 1 at a desktop's, a tablet's and a phone's size, saved in --work to look at.
 
---bless writes the pile's picture to the reference instead of comparing (only on purpose,
+--only runs the named cases alone. --bless writes the pile's picture to the reference instead of comparing (only on purpose,
 after looking at it). Exit 0 when every case passes, 1 otherwise.
 """
 import argparse
@@ -43,6 +56,7 @@ import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from chromium import BrowserError, Chromium  # noqa: E402
+import touch_cases  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 REFERENCE = os.path.join(ROOT, "tests", "render", "references", "web_pile.png")
@@ -61,8 +75,15 @@ COMPARED_FIELDS = ("ticks", "sim_time", "status", "state_hash", "com", "particle
 DROP_ARGS = {"scene": "assets/scenes/default.json", "frames": "90", "frame_time": "0.02", "size": "320x240"}
 
 
+class Skip(Exception):
+    """A case left out by --only."""
+
+
 class Failure(Exception):
     pass
+
+
+ALL_CASES = ("pile", "threads", "one_thread", "module", "drop_record") + touch_cases.CASES
 
 
 def start_server(site, isolated):
@@ -83,9 +104,11 @@ def start_server(site, isolated):
 
 
 def native(softbody, args):
-    """The native build's summary for the same command, with the portable pair tile."""
-    argv = [softbody, args.get("command", "run")]
-    for name, value in args.items():
+    """The native build's summary for the same command, with the portable pair tile. args: the
+    page's address's parameters, a dict or (name, value) pairs (a name may repeat: set)."""
+    pairs = list(args.items()) if isinstance(args, dict) else list(args)
+    argv = [softbody, dict(pairs).get("command", "run")]
+    for name, value in pairs:
         if name != "command":
             argv += ["--" + name.replace("_", "-"), value]
     if argv[1] == "run" and not os.environ.get("DISPLAY"):
@@ -182,6 +205,28 @@ def drop_and_record(browser, base, downloads):
           f"{recording['frames']} frames recorded and downloaded as {name}", flush=True)
 
 
+def pile(browser, isolated, options, case_start):
+    """The issue's scripted run on the threaded build: its summary and its picture."""
+    page, web = browser_run(browser, isolated, PILE_ARGS)
+    if not any("the threaded build" in line for line in page.console):
+        raise Failure("pile: the isolated page did not load the threaded build:\n  " + "\n  ".join(page.console))
+    compare_summaries("pile", web, native(options.softbody, PILE_ARGS), case_start)
+    shot = os.path.join(options.work, "web_pile.png")
+    page.screenshot(shot)
+    if options.bless:
+        shutil.copyfile(shot, REFERENCE)
+        print(f"pile: blessed {os.path.relpath(REFERENCE, ROOT)} ({os.path.getsize(REFERENCE)} bytes)")
+    else:
+        result = subprocess.run([options.compare, shot, REFERENCE, "--name", "web_pile", "--failures",
+                                 os.path.join(options.work, "failures"), *THRESHOLDS],
+                                capture_output=True, text=True)
+        print(result.stdout.strip(), flush=True)
+        if result.returncode != 0:
+            raise Failure("pile: the page's picture differs from its reference. If the new one is the "
+                          "intended one, re-bless on purpose: python3 tests/web/browser_test.py --bless "
+                          "(see tests/render/README.md)")
+
+
 def compare_summaries(name, web, native_summary, since):
     if web.get("status") != "ok":
         raise Failure(f"{name}: the browser's run ended '{web.get('status')}': {web.get('error')}")
@@ -204,7 +249,12 @@ def main():
                         help="the built Python module's folder (its state hash is compared too)")
     parser.add_argument("--work", default=os.path.join(ROOT, "build-web", "tests"))
     parser.add_argument("--bless", action="store_true", help="write the pile's picture to its reference")
+    parser.add_argument("--only", metavar="CASE[,CASE]", help="run these cases alone: " + ", ".join(ALL_CASES))
     options = parser.parse_args()
+    chosen = options.only.split(",") if options.only else list(ALL_CASES)
+    unknown = [c for c in chosen if c not in ALL_CASES]
+    if unknown:
+        parser.error("no case " + ", ".join(unknown) + " (the cases: " + ", ".join(ALL_CASES) + ")")
     for path in (options.site, options.softbody, options.compare):
         if not os.path.exists(path):
             print(f"browser_test.py: {path} is missing (./dev.sh test builds it)", file=sys.stderr)
@@ -221,33 +271,18 @@ def main():
         servers.append(plain_server)
         with Chromium(*VIEW) as browser:
             # pile: the scripted run of the issue, its summary and its picture.
-            case_start = time.monotonic()
-            try:
-                page, web = browser_run(browser, isolated, PILE_ARGS)
-                if not any("the threaded build" in line for line in page.console):
-                    raise Failure("pile: the isolated page did not load the threaded build:\n  " + "\n  ".join(page.console))
-                compare_summaries("pile", web, native(options.softbody, PILE_ARGS), case_start)
-                shot = os.path.join(options.work, "web_pile.png")
-                page.screenshot(shot)
-                if options.bless:
-                    shutil.copyfile(shot, REFERENCE)
-                    print(f"pile: blessed {os.path.relpath(REFERENCE, ROOT)} ({os.path.getsize(REFERENCE)} bytes)")
-                else:
-                    result = subprocess.run([options.compare, shot, REFERENCE, "--name", "web_pile", "--failures",
-                                             os.path.join(options.work, "failures"), *THRESHOLDS],
-                                            capture_output=True, text=True)
-                    print(result.stdout.strip(), flush=True)
-                    if result.returncode != 0:
-                        raise Failure("pile: the page's picture differs from its reference. If the new one is the "
-                                      "intended one, re-bless on purpose: python3 tests/web/browser_test.py --bless "
-                                      "(see tests/render/README.md)")
-            except (Failure, BrowserError) as e:
-                failures.append(str(e))
+            if "pile" in chosen:
+                try:
+                    pile(browser, isolated, options, time.monotonic())
+                except (Failure, BrowserError) as e:
+                    failures.append(str(e))
             # threads and one_thread: the SIMD tile over several blocks, on each build.
-            expected = native(options.softbody, MIXED_ARGS)
+            expected = native(options.softbody, MIXED_ARGS) if {"threads", "one_thread", "module"} & set(chosen) else None
             # module: the third runtime, against the same native summary as the two pages.
             case_start = time.monotonic()
             try:
+                if "module" not in chosen:
+                    raise Skip()
                 module = module_run(options.module, MIXED_ARGS)
                 if module is None:
                     print(f"module: skipped, the Python module was not built in {options.module} "
@@ -259,9 +294,13 @@ def main():
                                       ", ".join(f"{f} {module[f]} against {expected.get(f)}" for f in different))
                     print(f"module: ok, state_hash {module['state_hash']} after {module['ticks']} ticks, as the native "
                           f"build's ({time.monotonic() - case_start:.0f} s)", flush=True)
+            except Skip:
+                pass
             except Failure as e:
                 failures.append(str(e))
             for name, base, build in (("threads", isolated, "the threaded build"), ("one_thread", plain, "the one-thread build")):
+                if name not in chosen:
+                    continue
                 case_start = time.monotonic()
                 try:
                     page, web = browser_run(browser, base, MIXED_ARGS)
@@ -271,12 +310,23 @@ def main():
                 except (Failure, BrowserError) as e:
                     failures.append(str(e))
             try:
-                downloads = os.path.join(options.work, "downloads")
-                shutil.rmtree(downloads, ignore_errors=True)
-                os.makedirs(downloads)
-                drop_and_record(browser, isolated, downloads)
+                if "drop_record" in chosen:
+                    downloads = os.path.join(options.work, "downloads")
+                    shutil.rmtree(downloads, ignore_errors=True)
+                    os.makedirs(downloads)
+                    drop_and_record(browser, isolated, downloads)
             except (Failure, BrowserError) as e:
                 failures.append(str(e))
+            # By touch, on a tablet and a phone, on the one-thread build (any static host's).
+            for name in touch_cases.CASES:
+                if name not in chosen:
+                    continue
+                case_start = time.monotonic()
+                try:
+                    touch_cases.run(name, browser, plain, options.work, options.softbody, native)
+                    print(f"{name}: {time.monotonic() - case_start:.0f} s", flush=True)
+                except (touch_cases.Failure, Failure, BrowserError) as e:
+                    failures.append(str(e))
     except Failure as e:
         failures.append(str(e))
     finally:

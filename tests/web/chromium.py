@@ -28,6 +28,10 @@ class BrowserError(RuntimeError):
     pass
 
 
+# The page's events kept for the tests (the others are dropped): a file chooser the page opened.
+WATCHED = {"Page.fileChooserOpened"}
+
+
 def find_chromium():
     for name in ("chromium", "chromium-browser", "google-chrome"):
         path = shutil.which(name)
@@ -42,6 +46,7 @@ class Page:
         self.session = session
         self.console = []     # every console line so far, in order
         self.exceptions = []  # uncaught exceptions' descriptions
+        self.events = []      # (method, params) of the events a test waits for (WATCHED)
 
     def call(self, method, params=None, timeout=60):
         return self.browser.call(method, params, session=self.session, timeout=timeout)
@@ -54,6 +59,8 @@ class Page:
             for arg in params.get("args", []):
                 parts.append(str(arg["value"]) if "value" in arg else arg.get("description", arg.get("type", "")))
             self.console.append(" ".join(parts))
+        elif method in WATCHED:
+            self.events.append((method, params))
         elif method == "Runtime.exceptionThrown":
             details = params.get("exceptionDetails", {})
             exception = details.get("exception", {})
@@ -75,6 +82,12 @@ class Page:
                 raise BrowserError(f"no such console line within {timeout} s; the page said:\n  " +
                                    "\n  ".join(self.console[-20:]))
             self.browser.pump(min(left, 1.0))
+
+    def call_all(self, calls, timeout=60):
+        """Several commands sent at once, as [(method, params)], their results in order: the
+        browser gets each without waiting for the test to read the answer to the one before
+        (a finger's touches come as fast as the page takes them)."""
+        return self.browser.call_all(calls, session=self.session, timeout=timeout)
 
     def evaluate(self, expression, timeout=60):
         result = self.call("Runtime.evaluate", {"expression": expression, "returnByValue": True,
@@ -188,14 +201,47 @@ class Chromium:
             raise BrowserError(f"{method}: {answer['error'].get('message')}")
         return answer.get("result", {})
 
-    def open(self, url):
-        """A new tab at the browser's size, its console and exceptions watched, loading url."""
+    def call_all(self, calls, session=None, timeout=60):
+        idents = []
+        for method, params in calls:
+            self._next_id += 1
+            message = {"id": self._next_id, "method": method, "params": params or {}}
+            if session:
+                message["sessionId"] = session
+            self._send(message)
+            idents.append((self._next_id, method))
+        deadline = time.monotonic() + timeout
+        results = []
+        for ident, method in idents:
+            while ident not in self._answers:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    raise BrowserError(f"{method}: no answer within {timeout} s")
+                self.pump(min(left, 1.0))
+            answer = self._answers.pop(ident)
+            if "error" in answer:
+                raise BrowserError(f"{method}: {answer['error'].get('message')}")
+            results.append(answer.get("result", {}))
+        return results
+
+    def open(self, url, device=None):
+        """A new tab at the browser's size, its console and exceptions watched, loading url.
+
+        device: a tablet or phone to emulate instead, {"width", "height", "scale", "mobile"} (CSS
+        pixels, device pixels per CSS pixel): that screen, with a touch screen (the page gets touch
+        events, and Input.dispatchTouchEvent drives it)."""
         target = self.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
         page = Page(self, session)
         self.pages[session] = page
-        page.call("Emulation.setDeviceMetricsOverride", {"width": self.width, "height": self.height,
-                                                         "deviceScaleFactor": 1, "mobile": False})
+        if device:
+            page.call("Emulation.setDeviceMetricsOverride", {"width": device["width"], "height": device["height"],
+                                                             "deviceScaleFactor": device["scale"],
+                                                             "mobile": device.get("mobile", True)})
+            page.call("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 5})
+        else:
+            page.call("Emulation.setDeviceMetricsOverride", {"width": self.width, "height": self.height,
+                                                             "deviceScaleFactor": 1, "mobile": False})
         page.call("Runtime.enable")
         page.call("Page.enable")
         page.call("Page.navigate", {"url": url})

@@ -17,6 +17,9 @@
 #include "gui/plot.h"
 #include "gui/session.h"
 #include "gui/tool.h"
+#if defined(__EMSCRIPTEN__)
+#include "web/browser.h"
+#endif
 
 namespace softbody::app {
 
@@ -125,22 +128,30 @@ private:
         bar_chart("bars", bars, unit, 130.0f * c.scale);
     }
 
-    // Every tick so far to a new CSV file in the data folder (never over an existing one).
+    // Every tick so far to a new CSV file in the data folder (never over an existing one), or
+    // in the page as a download.
     void export_button(ToolContext& c) {
         if (!ImGui::Button("Export CSV")) {
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every tick since the start, every column, to a new file in\n%s", folder().c_str());
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("Every tick since the start, every column: a new file (a download in the page)");
             return;
         }
-        std::error_code error;
-        fs::create_directories(folder(), error);
         std::string stem = fs::path(c.session.source()).stem().string();
         if (stem.empty()) stem = "run";
+#if defined(__EMSCRIPTEN__)
+        // The page: a download, which the browser puts where the person keeps downloads.
+        const Series* series = c.session.series().series();
+        browser::download(stem + ".csv", c.session.series().csv(), "text/csv");
+        c.session.set_notice("Downloaded " + stem + ".csv (" + std::to_string(series ? series->size() : 0) + " rows, one a tick)");
+#else
+        std::error_code error;
+        fs::create_directories(folder(), error);
         std::string path;
         for (int n = 1; n < 100000; ++n) {
             path = (fs::path(folder()) / (stem + "_" + std::to_string(n) + ".csv")).string();
             if (!fs::exists(path, error)) break;
         }
         c.session.export_series(path, false);
+#endif
     }
 
     static std::string folder() { return (fs::path(presets_folder()).parent_path() / "data").string(); }
