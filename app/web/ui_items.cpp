@@ -71,8 +71,11 @@ void ImGuiTestEngineHook_ItemInfo(ImGuiContext* context, ImGuiID id, const char*
     for (auto it = all.items.rbegin(); it != all.items.rend(); ++it) {
         if (it->id == id) {
             it->label = label;
-            // As a person reads it: without the part after "##" that only keeps the id apart.
-            if (const auto hidden = it->label.find("##"); hidden != std::string::npos) it->label.erase(hidden);
+            // As a person reads it: without the part after "##" that only keeps the id apart. A
+            // widget whose words stand above it (a key's slider, key_widgets.h) has only that
+            // part: it is listed by it, the key's name.
+            if (const auto hidden = it->label.find("##"); hidden == 0) it->label.erase(0, 2);
+            else if (hidden != std::string::npos) it->label.erase(hidden);
             return;
         }
     }

@@ -285,9 +285,9 @@ def copy_link(browser, base, work, softbody, native):
     browser.call("Browser.grantPermissions", {"origin": origin, "permissions": ["clipboardReadWrite", "clipboardSanitizedWrite"]})
     start = {"scene": "assets/scenes/default.json", "set": "body.damping=0.1"}
     page = open_app(browser, base, start, TABLET, what)
-    tap_item(page, "Simulation", what + ": fold Simulation")  # room for the Parameters below it
-    s = tap_item(page, "Parameters", what + ": open Parameters")
-    slider = find_item(s, "dt (s)")
+    tap_item(page, "Simulation", what + ": fold Simulation")  # room for All keys below it
+    s = tap_item(page, "All keys", what + ": open All keys")
+    slider = find_item(s, "dt")  # a key's slider is listed by its key (its words stand above it)
     x, y = item_centre(s, slider)
     glide(page, [(x, y)], [(x + 40, y)], 4, what + ": slider")
     finger(page, "touchEnd")
@@ -295,7 +295,7 @@ def copy_link(browser, base, work, softbody, native):
     keys = dict(s["changed_keys"]["keys"])
     if "dt" not in keys:
         raise Failure(f"{what}: dragging the dt slider changed no key: {s['changed_keys']}")
-    tap_item(page, "Parameters", what + ": fold Parameters")
+    tap_item(page, "All keys", what + ": fold All keys")
     tap_item(page, "Share", what + ": open Share")
     s = tap_item(page, "Copy link", what + ": Copy link")
     link = None
