@@ -284,7 +284,7 @@ def copy_link(browser, base, work, softbody, native):
     origin = base.rstrip("/")
     browser.call("Browser.grantPermissions", {"origin": origin, "permissions": ["clipboardReadWrite", "clipboardSanitizedWrite"]})
     start = {"scene": "assets/scenes/default.json", "set": "body.damping=0.1"}
-    page = open_app(browser, base, start, TABLET, what)
+    page = open_app(browser, base, start, LAPTOP_TOUCH, what)  # a touch screen at ratio 1: quick to draw
     tap_item(page, "Simulation", what + ": fold Simulation")  # room for All keys below it
     s = tap_item(page, "All keys", what + ": open All keys")
     slider = find_item(s, "dt")  # a key's slider is listed by its key (its words stand above it)
