@@ -128,19 +128,21 @@ def tap_item(page, label, what, window="softbody", prefix=False):
     return frames_later(page, 4, what)  # seen, pressed, released: a frame each, then acted on
 
 
-def scroll_to(page, label, what, tries=6):
-    """Scrolls the panel by a finger's upward swipes on it until `label` is on the screen."""
+def scroll_to(page, label, what, tries=12, up=True):
+    """Scrolls the panel by a finger's swipes on it (upward: further down the panel) until
+    `label` is on the screen."""
     for _ in range(tries):
         s = state(page)
         try:
             item = find_item(s, label)
-            if item["y"] + item["h"] < s["canvas"]["height"]:
+            if item["y"] >= 0 and item["y"] + item["h"] < s["canvas"]["height"]:
                 return s
         except Failure:
             pass
         x = 0.5 * s["panel"]["width"] / ratio(s)
         height = s["canvas"]["height"] / ratio(s)
-        glide(page, [(x, 0.8 * height)], [(x, 0.35 * height)], 5, what)
+        ends = [(x, 0.8 * height)], [(x, 0.35 * height)]
+        glide(page, *(ends if up else ends[::-1]), 5, what)
         finger(page, "touchEnd")
         frames_later(page, 2, what)
     raise Failure(f"{what}: swiping up the panel did not bring '{label}' on the screen")
@@ -286,7 +288,9 @@ def copy_link(browser, base, work, softbody, native):
     start = {"scene": "assets/scenes/default.json", "set": "body.damping=0.1"}
     page = open_app(browser, base, start, LAPTOP_TOUCH, what)  # a touch screen at ratio 1: quick to draw
     tap_item(page, "Simulation", what + ": fold Simulation")  # room for All keys below it
-    s = tap_item(page, "All keys", what + ": open All keys")
+    scroll_to(page, "All keys", what + ": swipe to All keys")
+    tap_item(page, "All keys", what + ": open All keys")
+    s = scroll_to(page, "dt", what + ": swipe to the dt slider")
     slider = find_item(s, "dt")  # a key's slider is listed by its key (its words stand above it)
     x, y = item_centre(s, slider)
     glide(page, [(x, y)], [(x + 40, y)], 4, what + ": slider")
@@ -295,7 +299,7 @@ def copy_link(browser, base, work, softbody, native):
     keys = dict(s["changed_keys"]["keys"])
     if "dt" not in keys:
         raise Failure(f"{what}: dragging the dt slider changed no key: {s['changed_keys']}")
-    tap_item(page, "All keys", what + ": fold All keys")
+    scroll_to(page, "Share", what + ": swipe back to Share", up=False)
     tap_item(page, "Share", what + ": open Share")
     s = tap_item(page, "Copy link", what + ": Copy link")
     link = None
