@@ -3,8 +3,8 @@
 #   ./dev.sh demo   install what is missing, build the app (not the tests), open the interactive demo
 #   ./dev.sh test   install what is missing, build, run every test; then the browser version in
 #                   headless Chromium (build-web/), the unit, kernel and CLI tests again under
-#                   AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), and a fixed set
-#                   of inputs to each fuzz target (clang, build-fuzz/)
+#                   AddressSanitizer + UndefinedBehaviorSanitizer (clang, build-asan/), and a fixed
+#                   set of inputs to each fuzz target (built in the same build-asan/)
 #   ./dev.sh soak   install, build the app, run the demo for 20,000 scripted frames (virtual display)
 #   ./dev.sh web    install what is missing, build the browser version (build-web/site/) and serve
 #                   it at http://127.0.0.1:8080/ until stopped (WEB_PORT for another port)
@@ -88,8 +88,9 @@ web_tests() {
 }
 
 # The unit, kernel, CLI and fuzz-regression tests again under AddressSanitizer and
-# UndefinedBehaviorSanitizer (CMakePresets.json, preset asan: build-asan/, no renderer or
-# window, only the targets these tests need). Any report fails the test that made it.
+# UndefinedBehaviorSanitizer (CMakePresets.json, preset asan: clang, build-asan/, no renderer
+# or window, only the targets these tests need, and the fuzz targets, which link the same
+# sanitized libraries). Any report fails the test that made it.
 sanitizer_tests() {
   local start=$SECONDS
   cmake --preset asan >/dev/null
@@ -99,7 +100,7 @@ sanitizer_tests() {
   echo "dev.sh: sanitizer build and tests took $(( SECONDS - start )) s"
 }
 
-# Each fuzz target from its seeds and every input that once broke it, copied to a temporary
+# Each fuzz target (built by sanitizer_tests) from its seeds and every input that once broke it, copied to a temporary
 # folder (the fuzzer adds what it finds there, never in tests/). By default a fixed seed and a
 # fixed number of inputs (FUZZ_RUNS, default 60,000: about 10 s a target here), the same amount
 # of fuzzing on any machine; with FUZZ_SECONDS set, for that long from a fresh seed each time,
@@ -112,8 +113,6 @@ fuzz_smoke() {
   else
     budget=(-seed=1 -runs="${FUZZ_RUNS:-60000}")
   fi
-  cmake --preset fuzz >/dev/null
-  cmake --build --preset fuzz -j"$JOBS"
   work=$(mktemp -d "${TMPDIR:-/tmp}/softbody-fuzz.XXXXXX")
   for target in fuzz_mesh fuzz_scene fuzz_set; do
     mkdir -p "$work/$target"
@@ -121,7 +120,7 @@ fuzz_smoke() {
     if [ -d tests/fuzz/regressions/"$target" ]; then
       find tests/fuzz/regressions/"$target" -type f -exec cp {} "$work/$target/" \;
     fi
-    if ! build-fuzz/tests/fuzz/"$target" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 \
+    if ! build-asan/tests/fuzz/"$target" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 \
          -dict=tests/fuzz/dict/"$target".dict -artifact_prefix="$work/" "$work/$target" >"$work/$target.log" 2>&1; then
       tail -n 60 "$work/$target.log" >&2
       echo "dev.sh: $target failed; its log and the input that failed are in $work" >&2
@@ -130,7 +129,7 @@ fuzz_smoke() {
     echo "dev.sh: $target: $(grep -o 'Done [0-9]* runs in [0-9]* second(s)' "$work/$target.log")"
   done
   rm -rf "$work"
-  echo "dev.sh: fuzz build and runs took $(( SECONDS - start )) s"
+  echo "dev.sh: fuzz runs took $(( SECONDS - start )) s"
 }
 
 case "${1:-}" in

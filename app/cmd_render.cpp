@@ -192,6 +192,7 @@ struct RenderJob {
     int width = 800, height = 600;
     int threads = 1;
     CameraOptions camera;
+    SceneView view;                    // the scene's own camera direction (its "view"), under --camera
     render::Frame frame;               // its overlays, appearance and deliberate faults
 };
 
@@ -396,6 +397,9 @@ int render_frames(RenderJob& job, const WorldSettings& params, World& world, ren
     const float aspect = float(width) / float(height);
     match_ground(params, frame.appearance);
     if (job.hide_ground) frame.appearance.ground = false;  // drawn without it; the physics keeps it
+    constexpr double kRadians = 3.14159265358979323846 / 180.0;
+    if (job.view.yaw) frame.camera.yaw = float(*job.view.yaw * kRadians);
+    if (job.view.pitch) frame.camera.pitch = float(*job.view.pitch * kRadians);
     apply_camera_options(camera_options, frame.camera);
     frame_body(world, aspect, frame.camera, camera_options.zoom);
     const auto fix_camera = [&] {
@@ -469,6 +473,7 @@ int render_command(int argc, char** argv) {
     if (!read_options(argc, argv, job)) return kOk;
 
     const Scene resolved = job.scene.resolve();
+    job.view = resolved.view;
     World world(resolved, WorldOptions{job.threads, false});
     for (const std::string& note : world.notes()) std::cerr << "softbody: note: " << note << "\n";
     check_file_names(job);

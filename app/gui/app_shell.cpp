@@ -104,7 +104,10 @@ std::unique_ptr<Session> make_session(const SceneOptions& scene) {
     try {
         demo = std::make_unique<Session>(resolved);
         for (const std::string& note : demo->world().notes()) std::cerr << "softbody: note: " << note << "\n";
-        demo->set_source(!scene.scene.empty() ? scene.scene : !scene.mesh.empty() ? scene.mesh : default_scene_path());
+        demo->set_source(!scene.scene.empty() ? scene.scene
+                         : scene.lesson != 0   ? lesson_path(scene.lesson)
+                         : !scene.mesh.empty() ? scene.mesh
+                                               : default_scene_path());
     } catch (const InputError& e) {
         first_error = e.what();
         demo = std::make_unique<Session>(load_scene(default_scene_path()));
@@ -198,6 +201,7 @@ bool AppShell::run_frame() {
     recorder.frame(*renderer, panels.show_panels ? static_cast<int>(panels.width()) : 0, session->world().time());
     if (std::string failure = recorder.take_error(); !failure.empty()) session->set_error(failure);
     window->begin_ui_frame();
+    if (window->fingers_seen() && !finger_rows_offered_) panels.ui.finger_rows = finger_rows_offered_ = true;
     panels.draw(*session, view, scripted ? float(1.0 / frame_time) : io.Framerate);
     window->end_ui_frame();
     if (scripted && frame + 1 == frames && !screenshot_path.empty()) {

@@ -43,12 +43,23 @@ void Panels::draw(Session& session, View& view, float fps) {
     first_frame_ = false;
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 8 * scale_, viewport->WorkPos.y + 8 * scale_), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(panel_width_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
+    // Rows for a finger: a frame about 40 px tall at 1x (a finger's pad is 8 to 10 mm), with
+    // room between them, and slider grabs a finger can find.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    int pushed = 0;
+    if (ui.finger_rows) {
+        ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(style.FramePadding.x * 1.5f, 12.0f * scale_));
+        ImGui::PushStyleVar(ImGuiStyleVar_ItemSpacing, ImVec2(style.ItemSpacing.x * 1.5f, 8.0f * scale_));
+        ImGui::PushStyleVar(ImGuiStyleVar_GrabMinSize, 28.0f * scale_);
+        pushed = 3;
+    }
     // Folds by its title bar's arrow (or a double click on it); the keyboard moves through it
     // (the window's navigation is on).
     const bool open = ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
     folded_ = ImGui::IsWindowCollapsed();
     if (!open) {
         ImGui::End();
+        ImGui::PopStyleVar(pushed);
         return;
     }
     ImGui::PushItemWidth(-std::min(150.0f * scale, 0.42f * panel_width_));
@@ -64,6 +75,7 @@ void Panels::draw(Session& session, View& view, float fps) {
     ImGui::Separator();
     ImGui::TextDisabled("H: help   Space: pause   R: reset   Tab: hide panels");
     ImGui::End();
+    ImGui::PopStyleVar(pushed);
 }
 
 void Panels::help() {

@@ -17,6 +17,9 @@ class Recorder;
 // for a projector at the back of a classroom).
 struct UiSettings {
     float text_size = 1.0f;
+    // Rows tall enough for a finger (about 40 px at 1x instead of 20): on by itself at the first
+    // touch, and in the Display panel.
+    bool finger_rows = false;
 };
 
 struct ToolContext {

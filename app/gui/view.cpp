@@ -94,6 +94,10 @@ glm::vec3 integrator_color(Integrator integrator) {
 }
 
 void View::start(const Session& session) {
+    // A scene that says where to look from (its "view"): the camera turns there, then frames.
+    const SceneView& look = session.lesson().view;
+    if (look.yaw) camera.yaw = float(*look.yaw * 3.14159265358979323846 / 180.0);
+    if (look.pitch) camera.pitch = float(*look.pitch * 3.14159265358979323846 / 180.0);
     follow = moving_body_count(session.world()) == 1;  // one body: the view goes where it goes
     frame_body(session);
 }

@@ -184,6 +184,7 @@ void Window::poll_events() {
 void Window::touch(TouchGestures::Phase phase, int id, float x, float y) {
     const bool on_ui = phase == TouchGestures::Phase::Down && ui_at(x, y);
     ui_from_touch_ = true;
+    fingers_seen_ = true;
     touches_.touch(phase, id, x, y, time(), float(framebuffer_width()), float(framebuffer_height()), content_scale_, on_ui);
     take_touches();
 }

@@ -30,11 +30,13 @@ constexpr LessonInfo kLessons[] = {
     {"intermediate_axis.json", "Eq. 26, 28, 36"},
     {"figure7.json", "Eq. 37, 38, Figure 7"},
     {"collision_1d.json", "Eq. 37, 38: momentum"},
+    {"springs_parallel.json", "Eq. 21: k1 + k2"},
+    {"springs_series.json", "Eq. 21: 1/k1 + 1/k2"},
 };
 
 constexpr ClosedFormInfo kForms[] = {
-    {"spring_period", "Eq. 21", "the period of a body on a spring to a fixed point, T = 2 pi sqrt(m / k)",
-     "the rigid body on the spring"},
+    {"spring_period", "Eq. 21", "the period of a body on springs to fixed points, T = 2 pi sqrt(m / k): one spring, side by side (k1 + k2) or two sets end to end through a light body (1 / (1/k1 + 1/k2))",
+     "the rigid body on the springs"},
     {"damper_decay", "Eq. 22", "the decay rate c / 2m of a body on a damped spring, and its period",
      "the rigid body on the spring"},
     {"terminal_velocity", "Eq. 23", "the speed where drag cancels the weight, v_t = sqrt(2 m g / (rho C_D S))",
@@ -201,15 +203,38 @@ LessonMeter::LessonMeter(LessonExpect expect, const World& world) : expect_(std:
         fail("no slope: name a rigid body as \"slope\", or turn the ground on");
     }
     if (expect_.kind == "spring_period" || expect_.kind == "damper_decay") {
-        // The body's spring to a fixed point in the world.
-        found = false;
-        for (std::size_t i = 0; i < world.links().size() && !found; ++i) {
-            const Link& l = world.links()[i];
-            const auto on_body = [&](const LinkEnd& e) { return e.kind == LinkEnd::Kind::Rigid && e.body == body_; };
-            const auto fixed = [](const LinkEnd& e) { return e.kind == LinkEnd::Kind::World; };
-            if ((on_body(l.a) && fixed(l.b)) || (on_body(l.b) && fixed(l.a))) link_ = i, found = true;
+        // The body's springs to a fixed point in the world (side by side: in parallel), or to a
+        // moving body that hangs on such springs and on nothing else (the two sets in series).
+        const auto is_body = [](const LinkEnd& e, std::size_t b) { return e.kind == LinkEnd::Kind::Rigid && e.body == b; };
+        const auto fixed = [](const LinkEnd& e) { return e.kind == LinkEnd::Kind::World; };
+        const auto other_end = [&](const Link& l, std::size_t b) { return is_body(l.a, b) ? l.b : l.a; };
+        const std::vector<Link>& links = world.links();
+        for (std::size_t i = 0; i < links.size(); ++i) {
+            if ((is_body(links[i].a, body_) || is_body(links[i].b, body_)) && fixed(other_end(links[i], body_))) upper_.push_back(i);
         }
-        if (!found) fail("'" + expect_.body + "' hangs on no spring to a fixed point");
+        if (upper_.empty()) {
+            std::optional<std::size_t> middle;
+            for (std::size_t i = 0; i < links.size(); ++i) {
+                if (!is_body(links[i].a, body_) && !is_body(links[i].b, body_)) continue;
+                const LinkEnd other = other_end(links[i], body_);
+                if (other.kind != LinkEnd::Kind::Rigid || (middle && *middle != other.body)) fail("'" + expect_.body + "' hangs on no spring to a fixed point");
+                middle = other.body;
+                lower_.push_back(i);
+            }
+            if (middle) {
+                for (std::size_t i = 0; i < links.size(); ++i) {
+                    if (!is_body(links[i].a, *middle) && !is_body(links[i].b, *middle)) continue;
+                    const LinkEnd other = other_end(links[i], *middle);
+                    if (fixed(other)) {
+                        upper_.push_back(i);
+                    } else if (!is_body(other, body_)) {
+                        fail("'" + world.rigid_body(*middle).name + "' joins more than '" + expect_.body + "' and fixed points");
+                    }
+                }
+            }
+            if (upper_.empty()) fail("'" + expect_.body + "' hangs on no spring to a fixed point");
+            if (expect_.kind == "damper_decay") fail("'" + expect_.body + "' hangs on springs in series: damper_decay needs one set of springs");
+        }
     }
     if (expect_.kind == "inertia") {
         // The primitive's surface as triangles: a box's 12 are exact; a sphere's and a
@@ -262,8 +287,7 @@ void LessonMeter::start(const World& world) {
         for (std::size_t i = 0; i < world.rigid_body_count(); ++i) before_.push_back(world.rigid_motion(i));
     }
     if (kind == "spring_period" || kind == "damper_decay") {
-        const Link& l = world.links()[link_];
-        recent_.push_back(length(world.link_end_position(l.b) - world.link_end_position(l.a)));
+        recent_.push_back(spring_reach(world));
     } else if (kind == "terminal_velocity") {
         speed_ = length(world.rigid_motion(body_).v);
     } else if (kind == "friction_slope") {
@@ -284,8 +308,7 @@ void LessonMeter::observe(const World& world) {
     if (kind == "spring_period" || kind == "damper_decay") {
         // The spring's length l each tick; an extremum where it turns, placed between the ticks
         // by the parabola through three samples (its vertex: offset 1/2 (l0 - l2) / (l0 - 2 l1 + l2)).
-        const Link& l = world.links()[link_];
-        recent_.push_back(length(world.link_end_position(l.b) - world.link_end_position(l.a)));
+        recent_.push_back(spring_reach(world));
         if (recent_.size() > 3) recent_.erase(recent_.begin());
         if (recent_.size() == 3) {
             const double l0 = recent_[0], l1 = recent_[1], l2 = recent_[2];
@@ -371,14 +394,40 @@ std::vector<Comparison> LessonMeter::comparisons(const World& world) const {
 }
 
 // Eq. 21 and 22: the period of a body on a spring, and its decay rate with a damper.
+double LessonMeter::spring_reach(const World& world) const {
+    const Link& top = world.links()[upper_.front()];
+    const Link& bottom = world.links()[lower_.empty() ? upper_.front() : lower_.front()];
+    const LinkEnd& anchor = top.a.kind == LinkEnd::Kind::World ? top.a : top.b;
+    const LinkEnd& end = bottom.a.kind == LinkEnd::Kind::Rigid && bottom.a.body == body_ ? bottom.a : bottom.b;
+    return length(world.link_end_position(end) - world.link_end_position(anchor));
+}
+
+double LessonMeter::effective_stiffness(const World& world) const {
+    // Side by side, springs add their stiffness; in series, their compliance 1/k (the light
+    // body between them carries the same force through both).
+    const auto sum = [&](const std::vector<std::size_t>& set) {
+        double k = 0.0;
+        for (const std::size_t i : set) k += world.links()[i].k;
+        return k;
+    };
+    if (lower_.empty()) return sum(upper_);
+    const double upper = sum(upper_), lower = sum(lower_);
+    return upper > 0.0 && lower > 0.0 ? 1.0 / (1.0 / upper + 1.0 / lower) : 0.0;
+}
+
 void LessonMeter::compare_spring(const World& world, double, std::vector<Comparison>& out) const {
     const std::string& kind = expect_.kind;
     // Eq. 21 and 22 on one body: m x'' = -k x - c x', so x = A e^(-gamma t) cos(w_d t) with
     // gamma = c / 2m and w_d = sqrt(k / m - gamma^2); T = 2 pi / w_d (2 pi sqrt(m / k) for c = 0).
-    const Link& l = world.links()[link_];
-    const double m = world.rigid_body(body_).mass, gamma = l.c / (2.0 * m), w2 = l.k / m - gamma * gamma;
-    Comparison period = comparison("period", l.c > 0.0 ? "T = 2 pi / sqrt(k/m - (c/2m)^2)" : "T = 2 pi sqrt(m / k)",
-                      l.c > 0.0 ? "Eq. 21, 22" : "Eq. 21", "s");
+    // Several springs act as one of stiffness effective_stiffness (the light body in a series
+    // chain left out: at a hundredth of the body's mass it moves T by about 0.1%).
+    double c = 0.0;
+    for (const std::size_t i : upper_) c += world.links()[i].c;
+    const double k = effective_stiffness(world);
+    const double m = world.rigid_body(body_).mass, gamma = c / (2.0 * m), w2 = k / m - gamma * gamma;
+    const char* undamped = !lower_.empty() ? "T = 2 pi sqrt(m (1/k1 + 1/k2))" : upper_.size() > 1 ? "T = 2 pi sqrt(m / (k1 + k2))" : "T = 2 pi sqrt(m / k)";
+    Comparison period = comparison("period", c > 0.0 ? "T = 2 pi / sqrt(k/m - (c/2m)^2)" : undamped,
+                      c > 0.0 ? "Eq. 21, 22" : "Eq. 21", "s");
     period.predicted = w2 > 0.0 ? 2.0 * kPi / std::sqrt(w2) : kNaN;
     if (!(w2 > 0.0)) period.predicted_text = "no swing: critically or over-damped";
     period.tolerance = 0.01;

@@ -302,6 +302,33 @@ LessonExpect parse_expect(const json& value, const std::string& where) {
     return expect;
 }
 
+// "view": the first look at the scene; each part optional.
+SceneView parse_view(const json& value, const std::string& at) {
+    if (!value.is_object()) throw InputError(at + ": key 'view': expected an object, got " + type_name(value));
+    SceneView view;
+    const auto number = [&](const std::string& key, const json& item, double low, double high, const char* what) {
+        if (!item.is_number() || !std::isfinite(item.get<double>()) || item.get<double>() < low || item.get<double>() > high) {
+            throw InputError(at + ": key 'view': \"" + key + "\" expected " + what + ", got " + printable(item.dump()));
+        }
+        return item.get<double>();
+    };
+    for (const auto& [key, item] : value.items()) {
+        if (key == "yaw") {
+            view.yaw = number(key, item, -360.0, 360.0, "degrees from -360 to 360");
+        } else if (key == "pitch") {
+            view.pitch = number(key, item, -89.0, 89.0, "degrees from -89 to 89");
+        } else if (key == "height_scale") {
+            if (!item.is_boolean()) throw InputError(at + ": key 'view': \"height_scale\" expected true or false, got " + type_name(item));
+            view.height_scale = item.get<bool>();
+        } else if (key == "reference_line") {
+            view.reference_line = number(key, item, -1e6, 1e6, "a height in metres");
+        } else {
+            throw InputError(at + ": key 'view': unknown part '" + printable(key) + "' (yaw, pitch, height_scale, reference_line)");
+        }
+    }
+    return view;
+}
+
 // "controls": each a key the scene has (as --set names it), with a range inside the key's.
 std::vector<LessonControl> parse_controls(const json& list, const Scene& scene, const std::string& where) {
     std::vector<LessonControl> out;
@@ -425,6 +452,10 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
         }
         if (key == "expect") {
             scene.expect = parse_expect(value, where(origin, text, key));
+            continue;
+        }
+        if (key == "view") {
+            scene.view = parse_view(value, where(origin, text, key));
             continue;
         }
         if (key == "world") {
@@ -622,6 +653,14 @@ std::string scene_to_json(const Scene& scene) {
         root["controls"] = list;
     }
     if (!scene.text.empty()) root["text"] = scene.text;
+    if (scene.view != SceneView{}) {
+        json view = json::object();
+        if (scene.view.yaw) view["yaw"] = *scene.view.yaw;
+        if (scene.view.pitch) view["pitch"] = *scene.view.pitch;
+        if (scene.view.height_scale) view["height_scale"] = true;
+        if (scene.view.reference_line) view["reference_line"] = *scene.view.reference_line;
+        root["view"] = view;
+    }
     if (scene.expect) {
         json expect = {{"kind", scene.expect->kind}, {"body", scene.expect->body}};
         if (!scene.expect->slope.empty()) expect["slope"] = scene.expect->slope;

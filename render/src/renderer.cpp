@@ -717,7 +717,9 @@ void Renderer::State::draw_solid_bodies(const FramePass& pass, const SunShadow& 
             glDisable(GL_CULL_FACE);
         }
     }
-    // Rigid bodies are always solid; fixed ones (scenery) in a quieter tone of their colour.
+    // Rigid bodies are always solid; fixed ones (scenery) in a quieter tone of their colour,
+    // and pushed back a little in depth as the floor is: a flat body lying on a ramp (within
+    // the contact's slop of its face) stays in front of it.
     for (std::size_t b = 0; b < rigid.size(); ++b) {
         const RigidDraw& d = rigid[b];
         if (d.gpu.index_count() == 0) continue;
@@ -725,7 +727,12 @@ void Renderer::State::draw_solid_bodies(const FramePass& pass, const SunShadow& 
         const glm::vec3 color = view.fixed ? glm::mix(view.color, glm::vec3(0.62f, 0.62f, 0.6f), 0.6f) : view.color;
         if (d.gpu.closed) glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
+        if (view.fixed) {
+            glEnable(GL_POLYGON_OFFSET_FILL);
+            glPolygonOffset(2.0f, 4.0f);
+        }
         draw_body(pass, sun, d.gpu, d.model, d.normal_matrix, color, std::max(view.radius, 1e-3f), 1.0f, false);
+        glDisable(GL_POLYGON_OFFSET_FILL);
         glDisable(GL_CULL_FACE);
     }
 }

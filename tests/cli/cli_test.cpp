@@ -555,7 +555,8 @@ TEST(Lessons, ListsTheLessonsInOrder) {
     const json out = json::parse(listed.out);
     const std::vector<std::string> files = {"spring.json", "damper.json", "drag.json", "slope.json",
                                             "listing8.json", "stability.json", "seesaw.json", "tumbling_box.json",
-                                            "quaternion.json", "intermediate_axis.json", "figure7.json", "collision_1d.json"};
+                                            "quaternion.json", "intermediate_axis.json", "figure7.json", "collision_1d.json",
+                                            "springs_parallel.json", "springs_series.json"};
     ASSERT_EQ(out["lessons"].size(), files.size());
     for (std::size_t i = 0; i < files.size(); ++i) {
         const json& lesson = out["lessons"][i];

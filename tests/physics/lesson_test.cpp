@@ -70,7 +70,7 @@ TEST(Lessons, InTheAddendumsOrderAndEachLoads) {
     const std::vector<std::string> expected = {"spring.json", "damper.json", "drag.json", "slope.json",
                                                "listing8.json", "stability.json", "seesaw.json", "tumbling_box.json",
                                                "quaternion.json", "intermediate_axis.json", "figure7.json",
-                                               "collision_1d.json"};
+                                               "collision_1d.json", "springs_parallel.json", "springs_series.json"};
     ASSERT_EQ(lessons().size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(lessons()[i].file, expected[i]);
@@ -93,6 +93,7 @@ TEST(Lessons, TitleTextAndExpectLeaveThePhysicsAloneAndRoundTrip) {
         bare.expect.reset();
         bare.notes.clear();
         bare.controls.clear();
+        bare.view = {};
         World with((scene)), without((bare));
         with.run(100);
         without.run(100);
@@ -104,7 +105,14 @@ TEST(Lessons, TitleTextAndExpectLeaveThePhysicsAloneAndRoundTrip) {
         EXPECT_EQ(again.expect, scene.expect) << lesson.file;
         EXPECT_EQ(again.notes, scene.notes) << lesson.file;
         EXPECT_EQ(again.controls, scene.controls) << lesson.file;
+        EXPECT_EQ(again.view, scene.view) << lesson.file;
     }
+    // The drag lesson opens with its height scale (the ball falls 20 m past it).
+    EXPECT_TRUE(load_scene(scene_path("drag.json")).view.height_scale);
+    Scene looked = load_scene(scene_path("spring.json"));
+    looked.view.reference_line = 1.5;
+    looked.view.yaw = -30.0;
+    EXPECT_EQ(parse_scene(scene_to_json(looked), "looked.json").view, looked.view);
     TempDir dir;
     const Scene spring = load_scene(scene_path("spring.json"));
     const std::string saved = dir.file("saved.json");
@@ -143,6 +151,11 @@ TEST(Lessons, BadNewKeysNameFileLineAndKey) {
         {"{\n\"controls\": [{\"key\": \"restitution\", \"min\": 0.5, \"max\": 0.2}]\n}", "bad.json:2: key 'controls'", "min < max"},
         {"{\n\"controls\": [{\"key\": \"restitution\", \"max\": 3}]\n}", "bad.json:2: key 'controls'", "min < max"},
         {"{\n\"controls\": [{\"key\": \"restitution\", \"label\": 2}]\n}", "bad.json:2: key 'controls'", "must be a string"},
+        {"{\n\"view\": true\n}", "bad.json:2: key 'view'", "expected an object"},
+        {"{\n\"view\": {\"height_scale\": 1}\n}", "bad.json:2: key 'view'", "expected true or false"},
+        {"{\n\"view\": {\"reference_line\": \"2 m\"}\n}", "bad.json:2: key 'view'", "a height in metres"},
+        {"{\n\"view\": {\"pitch\": 90}\n}", "bad.json:2: key 'view'", "degrees from -89 to 89"},
+        {"{\n\"view\": {\"ruler\": true}\n}", "bad.json:2: key 'view'", "unknown part 'ruler'"},
     };
     for (const Case& c : cases) {
         try {
@@ -197,6 +210,31 @@ TEST(Lessons, SpringPeriodMatchesTwoPiRootMOverK) {
     const LessonRun light = run_lesson("spring.json", 5.0, {{"bob.mass", "0.25"}});
     EXPECT_NEAR(find(light, "period").predicted, 0.5 * period.predicted, 1e-9);
     expect_agrees(find(light, "period"), "spring, 0.25 kg");
+}
+
+// Two springs side by side stretch together, so their stiffnesses add: k1 + k2 = 80 N/m, T =
+// 2 pi sqrt(m / 80); both at 20 N/m: the single spring's 0.99 s. End to end through a 10 g ring
+// the same force runs through both and their compliances add: 1 / (1/k1 + 1/k2) = 20 N/m. The
+// ring's mass moves the slow mode's period by 0.125% (the two-mass chain's normal modes:
+// m_r m w^4 - ((k1 + k2) m + k2 m_r) w^2 + k1 k2 = 0), inside the lesson's 1%.
+TEST(Lessons, SpringsSideBySideAddAndEndToEndAddTheirCompliance) {
+    const LessonRun parallel = run_lesson("springs_parallel.json", 5.0);
+    const Comparison& side = find(parallel, "period");
+    EXPECT_NEAR(side.predicted, 2.0 * kPi * std::sqrt(1.0 / 80.0), 1e-12);
+    EXPECT_EQ(side.formula, "T = 2 pi sqrt(m / (k1 + k2))");
+    expect_agrees(side, "side by side");
+    const LessonRun softer = run_lesson("springs_parallel.json", 5.0, {{"left.stiffness", "20"}, {"right.stiffness", "20"}});
+    EXPECT_NEAR(find(softer, "period").predicted, 2.0 * kPi * std::sqrt(1.0 / 40.0), 1e-12);
+    expect_agrees(find(softer, "period"), "side by side, 20 and 20");
+
+    const LessonRun series = run_lesson("springs_series.json", 8.0);
+    const Comparison& chain = find(series, "period");
+    EXPECT_NEAR(chain.predicted, 2.0 * kPi * std::sqrt(1.0 / 20.0), 1e-12);
+    EXPECT_EQ(chain.formula, "T = 2 pi sqrt(m (1/k1 + 1/k2))");
+    expect_agrees(chain, "end to end");
+    const LessonRun stiff = run_lesson("springs_series.json", 8.0, {{"lower.stiffness", "120"}});
+    EXPECT_NEAR(find(stiff, "period").predicted, 2.0 * kPi * std::sqrt((1.0 / 40.0 + 1.0 / 120.0)), 1e-12);
+    expect_agrees(find(stiff, "period"), "end to end, 40 and 120");
 }
 
 // The damped ball: the amplitude's decay rate c / 2m from successive turning points, and the

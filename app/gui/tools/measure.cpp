@@ -67,6 +67,7 @@ public:
     }
 
     void draw_view(ToolContext& c) override {
+        follow_scene(c.session);
         ImDrawList* draw = ImGui::GetBackgroundDrawList();
         const render::Camera& camera = c.view.camera;
         // Across the view, level, at the chosen height, centred where the camera looks.
@@ -88,6 +89,17 @@ public:
     }
 
 private:
+    // A scene that asks for aids (its "view") turns them on as it opens; what the panel
+    // changes afterwards stays until another scene opens.
+    void follow_scene(const Session& session) {
+        if (session.source() == source_) return;
+        source_ = session.source();
+        const SceneView& aids = session.lesson().view;
+        scale_on_ = aids.height_scale;
+        line_on_ = aids.reference_line.has_value();
+        if (aids.reference_line) line_height_ = float(*aids.reference_line);
+    }
+
     // --- The stopwatch, on the world's clock ------------------------------------------------
     void stopwatch(Session& session) {
         const double now = session.world().time();
@@ -277,6 +289,7 @@ private:
     bool running_ = false;
     double start_ = 0.0, held_ = 0.0;  // s of world time: when it last started, and before that
     std::vector<double> laps_;
+    std::string source_;  // the scene whose aids were last applied
     bool line_on_ = false, scale_on_ = false;
     float line_height_ = 1.0f;
     bool ruler_on_ = false, placed_ = false;

@@ -76,6 +76,10 @@ public:
 
 private:
     void start(const World& world);
+    // spring_period, damper_decay: how far the body's end of the springs is from their fixed end.
+    double spring_reach(const World& world) const;
+    // The one spring that stands for them all: k of the parallel sets, combined in series.
+    double effective_stiffness(const World& world) const;
     // comparisons() for each closed form: its lines appended to out, `elapsed` seconds since
     // the measurement started.
     void compare_spring(const World& world, double elapsed, std::vector<Comparison>& out) const;
@@ -93,7 +97,10 @@ private:
     LessonExpect expect_;
     std::size_t body_ = 0;   // the rigid or soft body watched
     std::optional<std::size_t> slope_;  // friction_slope: the rigid body it rests on (none: the ground)
-    std::size_t link_ = 0;   // spring_period, damper_decay: its spring
+    // spring_period, damper_decay: the springs that hold the body. `upper_` joins a fixed point
+    // (in parallel when there are several); `lower_`, when not empty, joins the body to a light
+    // moving body that `upper_` holds: the two sets in series. Their keys are read each time.
+    std::vector<std::size_t> upper_, lower_;
     std::uint64_t last_tick_ = 0;
     double start_time_ = 0.0;
 

@@ -10,7 +10,11 @@
 //   - "controls": [ { "key": "spring.stiffness", "label": ..., "unit": ..., "min": ..., "max": ...,
 //     "step": ... } ]: the keys a lesson is about, shown first in plain words;
 //   - "expect": { "kind": CLOSED_FORM, "body": NAME, "slope": NAME }: what a lesson compares
-//     with a closed form (lesson.h lists the kinds and what each needs).
+//     with a closed form (lesson.h lists the kinds and what each needs);
+//   - "view": { "yaw": DEG, "pitch": DEG, "height_scale": true, "reference_line": HEIGHT }: how
+//     the scene is first looked at (the camera's direction; the app and `softbody render` frame
+//     the bodies from there) and the measuring aids shown over it (the Measure panel turns them
+//     off); the physics never reads it.
 // Names are unique across bodies and springs.
 //
 // The old flat form still reads, here and only here: world keys at the top level instead of in
@@ -49,12 +53,22 @@ struct LessonControl {
     bool operator==(const LessonControl&) const = default;
 };
 
+// How a scene is first looked at: the camera's direction, and the measuring aids over the view
+// (the app's Measure panel).
+struct SceneView {
+    std::optional<double> yaw, pitch;       // degrees: about +z (0 looks along +y), above the horizon
+    bool height_scale = false;              // a post beside the bodies with a tick every round step
+    std::optional<double> reference_line;   // a level line across the view at this height, m
+    bool operator==(const SceneView&) const = default;
+};
+
 // A world as a file describes it, and a lesson's words.
 struct Scene : WorldDef {
     std::string title, text;              // a lesson's title and its short text (ignored by the physics)
     std::string notes;                    // a short note for the teacher: what to ask, what to watch for
     std::optional<LessonExpect> expect;   // a lesson's closed form, if it has one
     std::vector<LessonControl> controls;  // the keys the lesson is about, shown first
+    SceneView view;                       // the first look at it (never read by the physics)
     bool operator==(const Scene&) const = default;
 };
 
