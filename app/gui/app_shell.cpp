@@ -130,6 +130,7 @@ AppShell::AppShell(const SceneOptions& scene, const WindowOptions& window_option
     launch_options() = scene;
     panels.attach(*session);
     panels.recorder = &recorder;
+    panels.ui.finger_rows = window->touch_screen();  // a tablet's or a phone's page: rows for fingers
     view.set_view(float(window->framebuffer_width()) / float(std::max(1, window->framebuffer_height())), panel_shift());
     view.start(*session);
     loads_seen = session->loads();
@@ -201,7 +202,6 @@ bool AppShell::run_frame() {
     recorder.frame(*renderer, panels.show_panels ? static_cast<int>(panels.width()) : 0, session->world().time());
     if (std::string failure = recorder.take_error(); !failure.empty()) session->set_error(failure);
     window->begin_ui_frame();
-    if (window->fingers_seen() && !finger_rows_offered_) panels.ui.finger_rows = finger_rows_offered_ = true;
     panels.draw(*session, view, scripted ? float(1.0 / frame_time) : io.Framerate);
     window->end_ui_frame();
     if (scripted && frame + 1 == frames && !screenshot_path.empty()) {

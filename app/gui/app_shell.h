@@ -63,7 +63,6 @@ private:
     Recorder recorder;  // the Record button and the M key: the 3D view into a video
 
     std::uint64_t loads_seen = 0;  // the session's loads the view has framed
-    bool finger_rows_offered_ = false;  // finger-sized rows turned on at the first touch (once)
     std::int64_t frame_number = 0;
     std::size_t next_command = 0;
     std::int64_t script_start = 0;

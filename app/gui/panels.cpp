@@ -25,6 +25,14 @@ LessonTool* Panels::lesson() const {
     return nullptr;
 }
 
+nlohmann::ordered_json Panels::tool_reports() const {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& tool : tools_) {
+        if (nlohmann::ordered_json r = tool->report(); !r.is_null()) out[tool->title()] = std::move(r);
+    }
+    return out;
+}
+
 void Panels::draw(Session& session, View& view, float fps) {
     error_banner(session, view);
     {

@@ -23,6 +23,8 @@ public:
     // Pixels the panel covers on the left of the view (none while it is hidden or folded).
     float width() const { return show_panels && !folded_ ? panel_width_ + 16.0f * scale_ : 0.0f; }
     LessonTool* lesson() const;  // the Lesson tool (its menu, its meter, the run's summary)
+    // Each tool's report (Tool::report) by its title, for the run's summary.
+    nlohmann::ordered_json tool_reports() const;
 
     UiSettings ui;
     bool show_help = false;

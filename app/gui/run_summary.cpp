@@ -50,8 +50,12 @@ void AppShell::summarise() {
         out["compared"] = worlds;
     }
     // The view: whether the camera follows the bodies, and where it looks now.
+    constexpr double kDegrees = 180.0 / 3.14159265358979323846;
     out["camera"] = {{"follow", view.follow},
-                     {"target", {view.camera.target.x, view.camera.target.y, view.camera.target.z}}};
+                     {"target", {view.camera.target.x, view.camera.target.y, view.camera.target.z}},
+                     {"yaw", view.camera.yaw * kDegrees},
+                     {"pitch", view.camera.pitch * kDegrees}};
+    out["tools"] = panels.tool_reports();
     // The timeline: what the record holds.
     const History& history = session->history();
     out["history"] = {{"oldest_tick", history.oldest_tick()}, {"newest_tick", history.newest_tick()},

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 namespace softbody::app {
@@ -17,8 +18,8 @@ class Recorder;
 // for a projector at the back of a classroom).
 struct UiSettings {
     float text_size = 1.0f;
-    // Rows tall enough for a finger (about 40 px at 1x instead of 20): on by itself at the first
-    // touch, and in the Display panel.
+    // Rows tall enough for a finger (about 40 px at 1x instead of 20): on from the start on a
+    // touch screen, and in the Display panel.
     bool finger_rows = false;
 };
 
@@ -45,6 +46,8 @@ public:
     // Every frame, whether its header is open or not, before the panel: what it draws over the
     // 3D view (the Measure tool's ruler and lines).
     virtual void draw_view(ToolContext&) {}
+    // What it shows, for a scripted run's JSON summary under its title (null: nothing to say).
+    virtual nlohmann::ordered_json report() const { return nullptr; }
 };
 
 using ToolMaker = std::unique_ptr<Tool> (*)();

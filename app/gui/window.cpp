@@ -118,6 +118,7 @@ Window::Window(const WindowOptions& options) {
     // by the same ratio, so its text is sharp and as large on the screen as at 1x. (Set once:
     // a page zoomed later keeps the UI's size, while the picture follows.)
     content_scale_ = browser::pixel_ratio();
+    touch_screen_ = browser::touch_screen();
     browser::on_touch([this](int phase, int id, float x, float y) {
         touch(phase == 0 ? TouchGestures::Phase::Down
               : phase == 1 ? TouchGestures::Phase::Move
@@ -184,7 +185,6 @@ void Window::poll_events() {
 void Window::touch(TouchGestures::Phase phase, int id, float x, float y) {
     const bool on_ui = phase == TouchGestures::Phase::Down && ui_at(x, y);
     ui_from_touch_ = true;
-    fingers_seen_ = true;
     touches_.touch(phase, id, x, y, time(), float(framebuffer_width()), float(framebuffer_height()), content_scale_, on_ui);
     take_touches();
 }

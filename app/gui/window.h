@@ -41,8 +41,8 @@ public:
     int framebuffer_height() const;
     // The UI's scale: the screen's (the device's pixel ratio in the browser).
     float content_scale() const { return content_scale_; }
-    // Whether a finger has touched the window since it opened (the page on a touch screen).
-    bool fingers_seen() const { return fingers_seen_; }
+    // Whether the window is on a screen that takes fingers (the page on a tablet or a phone).
+    bool touch_screen() const { return touch_screen_; }
 
     // A finger on the window (the page's touch screen), in framebuffer pixels: what it does
     // arrives as take_events()' events (touch set) for the view, or as the panel's pointer.
@@ -74,7 +74,7 @@ private:
     std::deque<UiPointer> ui_queue_;
     UiPointer ui_pointer_;
     bool ui_from_touch_ = false;
-    bool fingers_seen_ = false;
+    bool touch_screen_ = false;
 
     friend struct WindowCallbacks;
 };

@@ -47,6 +47,10 @@ EM_JS(int, fit_canvas_js, (GLFWwindow* id), {
 });
 
 EM_JS(double, pixel_ratio_js, (), { return window.devicePixelRatio || 1; });
+EM_JS(int, touch_screen_js, (), {
+    const coarse = window.matchMedia && window.matchMedia('(pointer: coarse)').matches;
+    return (navigator.maxTouchPoints || 0) > 0 || coarse ? 1 : 0;
+});
 
 // Text from the page into buffer (size bytes); returns the bytes the whole text needs, without
 // the terminating zero: the caller asks again with a larger buffer when that does not fit.
@@ -226,6 +230,8 @@ float pixel_ratio() {
     const double ratio = pixel_ratio_js();
     return ratio > 0.25 && ratio < 16.0 ? float(ratio) : 1.0f;
 }
+
+bool touch_screen() { return touch_screen_js() != 0; }
 
 void on_touch(std::function<void(int, int, float, float)> handler) { touch_handler() = std::move(handler); }
 void on_state(std::function<std::string()> answer) { state_answer() = std::move(answer); }

@@ -26,6 +26,8 @@ void run_frames(std::function<bool()> frame);
 void fit_canvas(GLFWwindow* window);
 // Device pixels per CSS pixel (2 on most phones and tablets): the UI's scale.
 float pixel_ratio();
+// Whether the page is on a screen that takes fingers (a tablet, a phone, a touch laptop).
+bool touch_screen();
 
 // Fingers on the canvas: the page's pointer events (web/softbody-page.js) call
 // handler(phase, id, x, y), phase 0 down, 1 move, 2 up, 3 cancelled, x and y in the canvas's

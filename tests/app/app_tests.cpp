@@ -15,6 +15,7 @@
 #include <map>
 #include <string>
 
+#include "physics/lesson.h"
 #include "render/image.h"
 
 namespace fs = std::filesystem;
@@ -206,6 +207,23 @@ TEST(App, DraggingARigidBodyByItsEndLiftsAndTurnsIt) {
     const auto& q = plank["orientation"];
     const double up = 2.0 * (q[1].get<double>() * q[3].get<double>() - q[0].get<double>() * q[2].get<double>());
     EXPECT_GT(std::abs(up), 0.3) << "pulled at its end, the plank should tilt";
+}
+
+// A ctrl-click (a long press on a touch screen) anywhere on a soft ball inspects it: the ray
+// meets the ball's surface and the nearest corner of the triangle it meets is taken, however far
+// that particle is drawn from the pointer. A 1 m ball of 162 particles, the panel hidden: its
+// particles are about 60 px apart on the screen, so a pick within 18 px of one missed at
+// (0.8, 0.45), on the ball.
+TEST(App, CtrlClickAnywhereOnASoftBallInspectsIt) {
+    const fs::path scene = scratch() / "big_ball.json";
+    std::ofstream(scene) << "{\"soft_bodies\": [{\"name\": \"ball\", \"mesh\": \"ball:2\", \"scale\": 1.0, \"up_axis\": \"z\","
+                            " \"init_height\": 0.5, \"particle_mass\": 0.05, \"stiffness\": 300, \"damping\": 1.0}]}";
+    for (const char* at : {"0.8 0.45", "0.71 0.5", "0.62 0.62"}) {
+        const fs::path script = write_script("centre.script", std::string("1 key tab\n30 move ") + at + "\n31 press left ctrl\n32 release left\n");
+        const Result r = run_app("--scene " + quote(scene.string()) + " --size 960x600 --frames 40 --script " + quote(script.string()));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_TRUE(r.summary.contains("inspection")) << "ctrl-click at " << at << ": " << r.out;
+    }
 }
 
 // The inspector on a particle of a cube resting on the ground: its read-out names the weight
@@ -412,12 +430,34 @@ TEST(App, SoakScriptLoopsAndEndsRunningWithFlatMemory) {
     EXPECT_LT(memory["end"].get<long>() - memory["after_warmup"].get<long>(), 16 * 1024);
 }
 
+// A scene's "view": opened by --lesson or by the menu, the slope lesson looks at its ramp from
+// the side (yaw 0, pitch 25 degrees) and names itself in the menu; the drag lesson opens with
+// the Measure panel's height scale on, and the next scene opened without one turns it off.
+TEST(App, LessonsOpenWithTheirOwnViewAndMeasuringAids) {
+    const Result slope = run_app("--lesson 4 --size 480x300 --frames 3");
+    ASSERT_EQ(slope.exit_code, 0) << slope.err;
+    EXPECT_NEAR(slope.summary["camera"]["yaw"].get<double>(), 0.0, 1e-3) << slope.out;
+    EXPECT_NEAR(slope.summary["camera"]["pitch"].get<double>(), 25.0, 1e-3) << slope.out;
+    EXPECT_EQ(slope.summary["lesson"]["number"], 4) << slope.out;
+    EXPECT_EQ(slope.summary["tools"]["Measure"]["height_scale"], false) << slope.out;
+
+    const Result drag = run_app("--lesson 3 --size 480x300 --frames 3");
+    ASSERT_EQ(drag.exit_code, 0) << drag.err;
+    EXPECT_EQ(drag.summary["tools"]["Measure"]["height_scale"], true) << drag.out;
+
+    const fs::path script = write_script("aids.script", "1 lesson 3\n3 lesson 1\n");
+    const Result then = run_app("--size 480x300 --frames 6 --script " + quote(script.string()));
+    ASSERT_EQ(then.exit_code, 0) << then.err;
+    EXPECT_EQ(then.summary["lesson"]["number"], 1) << then.out;
+    EXPECT_EQ(then.summary["tools"]["Measure"]["height_scale"], false) << then.out;
+}
+
 // The Lessons menu, scripted ('lesson N' opens lesson N as the menu does): each lesson opens
 // in order with its title, runs, and none of its closed forms disagrees with the simulation;
 // the stability lesson diverges, as it predicts. Then the spring's period, measured live (every
 // tick, five a frame) over 7 s, against 2 pi sqrt(m / k).
 TEST(App, EachLessonOpensInOrderAndTheSpringKeepsItsPeriod) {
-    for (int n = 1; n <= 11; ++n) {
+    for (int n = 1; n <= int(softbody::lessons().size()); ++n) {
         const fs::path script = write_script("lesson.script", "1 lesson " + std::to_string(n) + "\n");
         // 30 frames of 0.04 s: 60 ticks, 1.2 s (a small window: software GL is the slow part).
         const Result r = run_app("--size 480x300 --frames 30 --frame-time 0.04 --script " + quote(script.string()));

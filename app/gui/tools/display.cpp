@@ -30,7 +30,7 @@ private:
         if (ImGui::SmallButton("Projector")) c.ui.text_size = c.ui.text_size >= 1.9f ? 1.0f : 2.0f;
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Text twice the size, readable from the back of a classroom (again: back to 1x).");
         ImGui::Checkbox("rows for fingers", &c.ui.finger_rows);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Taller rows and slider grabs, for a touch screen (on by itself at the first touch).");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Taller rows and slider grabs, for a touch screen (on from the start on a touch screen).");
         ImGui::Checkbox("particles (P)", &o.particles);
         ImGui::SameLine(180 * c.scale);
         ImGui::Checkbox("springs (S)", &o.springs);

@@ -66,6 +66,12 @@ public:
         probe_panel(c.session);
     }
 
+    nlohmann::ordered_json report() const override {
+        nlohmann::ordered_json out = {{"height_scale", scale_on_}, {"ruler", ruler_on_}};
+        out["reference_line"] = line_on_ ? nlohmann::ordered_json(line_height_) : nlohmann::ordered_json(nullptr);
+        return out;
+    }
+
     void draw_view(ToolContext& c) override {
         follow_scene(c.session);
         ImDrawList* draw = ImGui::GetBackgroundDrawList();
