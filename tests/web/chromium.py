@@ -229,15 +229,18 @@ class Chromium:
 
         device: a tablet or phone to emulate instead, {"width", "height", "scale", "mobile"} (CSS
         pixels, device pixels per CSS pixel): that screen, with a touch screen (the page gets touch
-        events, and Input.dispatchTouchEvent drives it)."""
+        events, and Input.dispatchTouchEvent drives it); with "fullscreen" true, a page as large as
+        the screen (a projector's laptop in fullscreen or kiosk mode)."""
         target = self.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
         page = Page(self, session)
         self.pages[session] = page
         if device:
-            page.call("Emulation.setDeviceMetricsOverride", {"width": device["width"], "height": device["height"],
-                                                             "deviceScaleFactor": device["scale"],
-                                                             "mobile": device.get("mobile", True)})
+            metrics = {"width": device["width"], "height": device["height"], "deviceScaleFactor": device["scale"],
+                       "mobile": device.get("mobile", True)}
+            if device.get("fullscreen"):
+                metrics.update(screenWidth=device["width"], screenHeight=device["height"])
+            page.call("Emulation.setDeviceMetricsOverride", metrics)
             page.call("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 5})
         else:
             page.call("Emulation.setDeviceMetricsOverride", {"width": self.width, "height": self.height,

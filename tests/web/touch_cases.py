@@ -19,6 +19,8 @@ DESKTOP = {"width": 1280, "height": 800, "scale": 1, "mobile": False}
 TABLET = {"width": 1024, "height": 768, "scale": 2, "mobile": True}
 PHONE = {"width": 390, "height": 844, "scale": 2, "mobile": True}
 LAPTOP_TOUCH = {"width": 800, "height": 600, "scale": 1, "mobile": False}
+# A projector's laptop in fullscreen: the page as large as the screen, 1600x900.
+FULLSCREEN = {"width": 1600, "height": 900, "scale": 1, "mobile": False, "fullscreen": True}
 SMALL = {"width": 480, "height": 360, "scale": 1, "mobile": True}  # quick to draw, where the size does not matter
 DEFAULT_SCENE = {"scene": "assets/scenes/default.json"}
 # The default ball at rest on the ground from the start (not thrown, not dropped): where it is
@@ -295,6 +297,24 @@ def phone(browser, base, work):
     print(f"{what}: ok, " + notes[0] + "; the panel unfolds by a tap and Pause pauses", flush=True)
 
 
+def fullscreen(browser, base, work):
+    """A page as large as the screen (fullscreen, a kiosk, a projector): the canvas takes the
+    screen's pixels and the picture keeps its shape: the spring lesson's ball is as wide as it is
+    tall on the screen, not an egg."""
+    what = "fullscreen"
+    page = open_app(browser, base, {"lesson": "1"}, FULLSCREEN, what)
+    s = frames_later(page, 3, what)
+    notes = [check_canvas(page, s, FULLSCREEN, what)]
+    ball = next(b for b in s["bodies"] if b["name"] == "bob")
+    centre, right, up = ball["screen"], ball["screen_right"], ball["screen_up"]
+    across = ((right[0] - centre[0]) ** 2 + (right[1] - centre[1]) ** 2) ** 0.5
+    upward = ((up[0] - centre[0]) ** 2 + (up[1] - centre[1]) ** 2) ** 0.5
+    if not across > 2 or abs(across / upward - 1) > 0.02:
+        raise Failure(f"{what}: the ball is drawn {2 * across:.1f} px wide and {2 * upward:.1f} px tall on a screen-sized page")
+    page.screenshot(os.path.join(work, "fullscreen.png"))
+    print(f"{what}: ok, " + notes[0] + f"; the ball {2 * across:.1f} px wide and {2 * upward:.1f} px tall", flush=True)
+
+
 def copy_link(browser, base, work, softbody, native):
     """A slider dragged by a finger changes a key; Share > Copy link puts on the clipboard an
     address that opens the same setup: the same scene and keys, and after 60 frames the native
@@ -429,7 +449,7 @@ def screenshots(browser, base, work):
     print("screenshots: " + ", ".join(names) + " in " + work, flush=True)
 
 
-CASES = ("tablet", "phone", "copy_link", "presets", "screenshots")
+CASES = ("tablet", "phone", "fullscreen", "copy_link", "presets", "screenshots")
 
 
 def run(name, browser, base, work, softbody, native):
@@ -438,6 +458,8 @@ def run(name, browser, base, work, softbody, native):
             tablet(browser, base, work)
         elif name == "phone":
             phone(browser, base, work)
+        elif name == "fullscreen":
+            fullscreen(browser, base, work)
         elif name == "copy_link":
             copy_link(browser, base, work, softbody, native)
         elif name == "presets":
