@@ -16,8 +16,8 @@ const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_eule
 
 World world_of(const std::string& json, const char* integrator) {
     Scene scene = parse_scene(json, "test.json");
-    scene.params.integrator = *integrator_from_string(integrator);
-    return World(make_world_def(std::move(scene)), WorldOptions{1});
+    scene.settings.integrator = *integrator_from_string(integrator);
+    return World(scene, WorldOptions{1});
 }
 
 std::string number(double x) {
