@@ -119,6 +119,15 @@ void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, co
     dy[rigid::Q + 3] = dq.z;
 }
 
+void rigid_momentum_derivative(const RigidBody& body, const Vec3d& F, const Vec3d& tau, double* dy) {
+    for (int k = 0; k < rigid::kStateSize; ++k) dy[k] = 0.0;
+    if (body.fixed) return;
+    for (int k = 0; k < 3; ++k) {
+        dy[rigid::P + k] = F[k];
+        dy[rigid::L + k] = tau[k];
+    }
+}
+
 namespace {
 bool is_momentum_slot(std::size_t k) {
     const std::size_t slot = k % rigid::kStateSize;
@@ -158,42 +167,34 @@ void symplectic_positions(std::span<const RigidBody> bodies, std::span<const dou
     });
 }
 
-Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, double energy_target) {
-    // About principal axis k for time t: the body turns by t (a . L) / I_k about a = R e_k,
-    // its own axis, which the turn leaves where it is (an exact rotation; Eq. 35 with
-    // w = J_world^-1 L restricted to that axis's share of the energy).
-    Quat q = q0;
-    const auto turn_about = [&](int k, double t) {
-        const double I = body.principal_moments[k];
-        if (!(I > 0.0)) return;
-        const Mat3 R = q.normalized().to_matrix();
-        const Vec3d e{body.principal_axes.m[0][k], body.principal_axes.m[1][k], body.principal_axes.m[2][k]};
-        const Vec3d a = normalize(R * e);
-        const double angle = t * dot(a, L) / I;
-        if (angle != 0.0) q = Quat::from_axis_angle(a, angle) * q;
-    };
-    // The energy 1/2 L . J_world^-1 L of an orientation, from the body-axes angular momentum
-    // pi = R^T L in principal axes.
-    const auto body_momentum = [&](const Quat& orientation) {
-        const Vec3d b = orientation.normalized().to_matrix().transposed() * L;
-        return body.principal_axes.transposed() * b;
-    };
-    const Vec3d& I = body.principal_moments;
-    const auto energy = [&](const Vec3d& pi) { return 0.5 * (pi.x * pi.x / I.x + pi.y * pi.y / I.y + pi.z * pi.z / I.z); };
-    const double E0 = energy_target >= 0.0 ? energy_target : energy(body_momentum(q0));
-    // Largest moment outside, smallest (the fastest turn) once in the middle.
-    turn_about(2, 0.5 * h);
-    turn_about(1, 0.5 * h);
-    turn_about(0, h);
-    turn_about(1, 0.5 * h);
-    turn_about(2, 0.5 * h);
-    // The splitting keeps |L| exactly and the energy to O(h^2), wandering about its value; a
-    // free body keeps both: brought back (match_energy), a tumbling body's energy never rises,
-    // under any spin.
-    return match_energy(body, q, L, E0);
+namespace {
+
+// The principal axes as columns, made right-handed (an eigen-solver may return a reflection):
+// turning the body about its own axis e_k is then turning the momentum pi = E^T R^T L about the
+// k-th coordinate axis the other way.
+Mat3 right_handed_axes(const RigidBody& body) {
+    Mat3 E = body.principal_axes;
+    const Vec3d e0{E.m[0][0], E.m[1][0], E.m[2][0]}, e1{E.m[0][1], E.m[1][1], E.m[2][1]}, e2{E.m[0][2], E.m[1][2], E.m[2][2]};
+    if (dot(cross(e0, e1), e2) < 0.0) {
+        for (int r = 0; r < 3; ++r) E.m[r][2] = -E.m[r][2];
+    }
+    return E;
 }
 
-Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double E0) {
+// The body's angular momentum in its principal axes, pi = E^T R^T L (R of q made unit).
+Vec3d principal_momentum(const Mat3& E, const Quat& q, const Vec3d& L) {
+    return E.transposed() * (q.normalized().to_matrix().transposed() * L);
+}
+
+// True when the three principal moments are one (a ball, a cube): every axis is principal, and
+// the free body turns steadily about L.
+bool isotropic(const Vec3d& I) {
+    const double most = std::max({I.x, I.y, I.z}), least = std::min({I.x, I.y, I.z});
+    return least > 0.0 && most - least <= 1e-12 * most;
+}
+
+// match_energy on a momentum already in principal axes (E right-handed).
+Quat match_principal_energy(const RigidBody& body, const Mat3& E, const Quat& q0, const Vec3d& pi, double E0) {
     // In the body's principal axes its angular momentum pi = R^T L has |pi| = |L| and energy
     // sum pi_i^2 / 2 I_i. The pi' nearest pi with the same |pi| and energy E0, on the curve where
     // the sphere meets the ellipsoid (where the true motion runs), is pi_i / (1 + m1 + m2 / I_i)
@@ -201,7 +202,6 @@ Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double 
     // turned by the least rotation taking pi to pi' in its own axes.
     const Vec3d& I = body.principal_moments;
     if (!(I.x > 0.0 && I.y > 0.0 && I.z > 0.0) || !(E0 > 0.0)) return q0;
-    const Vec3d pi = body.principal_axes.transposed() * (q0.normalized().to_matrix().transposed() * L);
     const double pi2[3] = {pi.x * pi.x, pi.y * pi.y, pi.z * pi.z}, inv_I[3] = {1.0 / I.x, 1.0 / I.y, 1.0 / I.z};
     const double size2 = pi2[0] + pi2[1] + pi2[2];
     // No energy other than E0 within reach: L^2 / 2 I_max <= E0 <= L^2 / 2 I_min.
@@ -230,15 +230,65 @@ Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double 
         m2 -= (d11 * f2 - d12 * f1) / det;
     }
     const Vec3d target{pi.x / (1.0 + m1 + m2 * inv_I[0]), pi.y / (1.0 + m1 + m2 * inv_I[1]), pi.z / (1.0 + m1 + m2 * inv_I[2])};
-    // R'^T L = pi' for R' = R B with B pi' = pi: B turns pi' onto pi, about pi' x pi (body axes).
-    // The least turn that does it, as a quaternion without an angle (no sine or arctangent: the
-    // same bits everywhere, portable_math.h): (|a||b| + a . b, a x b), normalised, turns a onto b.
+    // R'^T L = pi' for R' = R B with B pi' = pi: B turns pi' onto pi, about pi' x pi (principal
+    // axes). The least turn that does it, as a quaternion without an angle (no sine or
+    // arctangent: the same bits everywhere, portable_math.h): (|a||b| + a . b, a x b),
+    // normalised, turns a onto b. A turn in the body's own axes multiplies q on the right.
     const Vec3d axis = cross(target, pi);
     if (!(length(axis) > 0.0)) return q0;
     const double w = length(target) * length(pi) + dot(target, pi);
-    // Turning the body by B (in its own axes) is turning it by R B R^T in the world's.
-    const Vec3d axis_world = q0.normalized().to_matrix() * (body.principal_axes * axis);
-    return Quat{w, axis_world.x, axis_world.y, axis_world.z}.normalized() * q0;
+    const Vec3d axis_body = E * axis;
+    return q0 * Quat{w, axis_body.x, axis_body.y, axis_body.z}.normalized();
+}
+
+}  // namespace
+
+Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, double energy_target) {
+    const Vec3d& I = body.principal_moments;
+    // A ball or a cube: w = L / I stays as it is, and the exact turn is one turn about L.
+    if (isotropic(I)) {
+        const double size = length(L);
+        if (!(size > 0.0)) return q0;
+        return Quat::from_axis_angle(L / size, h * size / I.x) * q0;
+    }
+    // About principal axis k for time t: the body turns by t pi_k / I_k about its own axis e_k,
+    // which the turn leaves where it is (an exact rotation; Eq. 35 with w = J_world^-1 L
+    // restricted to that axis's share of the energy). In the body's own axes the turn multiplies
+    // q on the right, and turns the momentum the body sees, pi, the other way about that axis.
+    const Mat3 E = right_handed_axes(body);
+    Vec3d pi = principal_momentum(E, q0, L);
+    const auto energy = [&](const Vec3d& p) { return 0.5 * (p.x * p.x / I.x + p.y * p.y / I.y + p.z * p.z / I.z); };
+    const double E0 = energy_target >= 0.0 ? energy_target : energy(pi);
+    Quat q = q0;
+    const auto turn_about = [&](int k, double t) {
+        if (!(I[k] > 0.0)) return;
+        const double angle = t * pi[k] / I[k];
+        if (angle == 0.0) return;
+        const double s = portable::sin(0.5 * angle), c = portable::cos(0.5 * angle);
+        const Vec3d e = Vec3d{E.m[0][k], E.m[1][k], E.m[2][k]} * s;
+        q = q * Quat{c, e.x, e.y, e.z};
+        // pi' = Rot_k(angle)^T pi, with sin and cos of the whole angle from the half angle's.
+        const double sa = 2.0 * s * c, ca = c * c - s * s;
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        const double pi_i = pi[i], pi_j = pi[j];
+        pi[i] = ca * pi_i + sa * pi_j;
+        pi[j] = ca * pi_j - sa * pi_i;
+    };
+    // Largest moment outside, smallest (the fastest turn) once in the middle.
+    turn_about(2, 0.5 * h);
+    turn_about(1, 0.5 * h);
+    turn_about(0, h);
+    turn_about(1, 0.5 * h);
+    turn_about(2, 0.5 * h);
+    // The splitting keeps |L| exactly and the energy to O(h^2), wandering about its value; a
+    // free body keeps both: brought back (match_principal_energy), a tumbling body's energy never
+    // rises, under any spin.
+    return match_principal_energy(body, E, q, pi, E0);
+}
+
+Quat match_energy(const RigidBody& body, const Quat& q0, const Vec3d& L, double E0) {
+    const Mat3 E = right_handed_axes(body);
+    return match_principal_energy(body, E, q0, principal_momentum(E, q0, L), E0);
 }
 
 void flat_rk4_stage(std::span<const double> y, std::span<const double> k, double w, std::span<double> stage) {

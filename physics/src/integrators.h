@@ -56,6 +56,9 @@ void hold_pins(SoftBody& body);
 // Listing 9's state derivative of one rigid body, given its net force and torque. A fixed
 // body's is zero.
 void rigid_derivative(const RigidBody& body, const double* y, const Vec3d& F, const Vec3d& tau, double* dy);
+// Its momenta's rates alone, dP/dt = F and dL/dt = tau (Eq. 26), the rest zero: all that
+// symplectic Euler and Verlet take from it (flat_euler_momenta).
+void rigid_momentum_derivative(const RigidBody& body, const Vec3d& F, const Vec3d& tau, double* dy);
 
 // y += h dy, over the whole array (Listing 10's ExplicitEuler call).
 void flat_euler(std::span<double> y, std::span<const double> dy, double h);

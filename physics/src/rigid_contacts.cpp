@@ -55,7 +55,7 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
             points.clear();
             collide(shapes[ia], pose_of(sa), shapes[ib], pose_of(sb), scratch.margins[ia] + scratch.margins[ib], points);
             if (points.empty()) continue;
-            const RigidMotion ma = rigid_motion(bodies[ia], sa), mb = rigid_motion(bodies[ib], sb);
+            const Vec3d xa{sa[rigid::X], sa[rigid::X + 1], sa[rigid::X + 2]}, xb{sb[rigid::X], sb[rigid::X + 1], sb[rigid::X + 2]};
             const RigidBody &a = bodies[ia], &b = bodies[ib];
             RigidContact c;
             c.a = ia;
@@ -69,8 +69,8 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
                 c.normal = p.normal;
                 c.separation = -p.depth;
                 c.depth = p.depth;
-                c.arm_a = p.point - ma.x;
-                c.arm_b = p.point - mb.x;
+                c.arm_a = p.point - xa;
+                c.arm_b = p.point - xb;
                 found.push_back(c);
             }
         }

@@ -180,6 +180,7 @@ void World::evaluate_forces(int stage, bool record_contacts) {
     }
     // Rigid bodies: the net force and torque (Eq. 26, 27, 33), then Listing 9's derivative.
     const std::vector<double>& y = stage == 0 ? y_ : y_stage_;
+    const bool momenta_only = settings_.integrator == Integrator::Verlet || settings_.integrator == Integrator::SymplecticEuler;
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         const RigidBody& body = rigid_[b];
         const double* state = &y[b * rigid::kStateSize];
@@ -190,16 +191,22 @@ void World::evaluate_forces(int stage, bool record_contacts) {
         }
         Wrench w;
         if (!body.fixed) {
-            const RigidMotion m = softbody::rigid_motion(body, state);
+            // The motion (velocities, world inertia) only for the forces that depend on it.
+            const bool grabbed = grab_ && grab_->rigid && grab_->body == b;
+            const bool dragged = body.drag_coefficient > 0.0f && settings_.air_density > 0.0f;
+            const RigidMotion m = grabbed || dragged ? softbody::rigid_motion(body, state) : RigidMotion{};
             add_rigid_gravity(w, body, settings_.gravity);
-            if (grab_ && grab_->rigid && grab_->body == b) add_rigid_grab(w, body, m, *grab_, h);
+            if (grabbed) add_rigid_grab(w, body, m, *grab_, h);
             if (!links_.empty()) {
                 w.F += link_force_on_rigid_[b];
                 w.tau += link_torque_on_rigid_[b];
             }
-            if (body.drag_coefficient > 0.0f && settings_.air_density > 0.0f) add_rigid_drag(w, body, m, settings_.air_density, h);
+            if (dragged) add_rigid_drag(w, body, m, settings_.air_density, h);
         }
-        rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
+        // Symplectic Euler and Verlet take only the momenta's rates (they move x and q
+        // themselves: symplectic_positions); the others the whole of Listing 9's derivative.
+        if (momenta_only) rigid_momentum_derivative(body, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
+        else rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
     }
 }
 
