@@ -481,13 +481,56 @@ const char* width_of(PairKernelVariant variant) {
 // is installed) is its own executable beside this one.
 
 // The bench's own scenes, then the same kinds built as another engine's comparison built them
-// (bin:N, stack:L: generated.h), which the solver was not tuned on.
-const std::vector<std::string> kScaleScenes{"boxes:100", "boxes:1000", "boxes:3000", "pyramid:10", "pyramid:20",
-                                            "bin:1000",  "bin:3000",   "stack:10",   "stack:20"};
+// (bin:N, stack:L: generated.h), which the solver was not tuned on; each pyramid also with
+// sleeping off (NAME@KEY=VALUE: the scene with that key set, as `simulate --set` sets it).
+const std::vector<std::string> kScaleScenes{"boxes:100",
+                                            "boxes:1000",
+                                            "boxes:3000",
+                                            "pyramid:10",
+                                            "pyramid:10@sleeping=false",
+                                            "pyramid:20",
+                                            "pyramid:20@sleeping=false",
+                                            "bin:1000",
+                                            "bin:3000",
+                                            "stack:10",
+                                            "stack:10@sleeping=false",
+                                            "stack:20",
+                                            "stack:20@sleeping=false"};
+
+// A scene of the section: its name, then any KEY=VALUE after an '@' each.
+struct ScaleScene {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> keys;
+};
+
+ScaleScene parse_scale_scene(const std::string& spec) {
+    ScaleScene scene;
+    std::size_t at = spec.find('@');
+    scene.name = spec.substr(0, at);
+    while (at != std::string::npos) {
+        const std::size_t next = spec.find('@', at + 1);
+        const std::string assignment = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+        const std::size_t eq = assignment.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            throw UsageError("--scale-scenes: expected NAME@KEY=VALUE, got '" + spec + "'");
+        }
+        scene.keys.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+        at = next;
+    }
+    return scene;
+}
+
+Scene load_scale_scene(const std::string& spec) {
+    const ScaleScene parsed = parse_scale_scene(spec);
+    Scene scene = load_scene(parsed.name);
+    for (const auto& [key, value] : parsed.keys) set_scene_key(scene, key, value);
+    return scene;
+}
 
 // Simulated seconds of a scene's run: 10, and 3 for pyramids of 20 layers or more (softbody's
 // 20-layer pyramid takes most of a second a tick today).
-double default_scale_seconds(const std::string& scene) {
+double default_scale_seconds(const std::string& spec) {
+    const std::string scene = parse_scale_scene(spec).name;
     if (is_pyramid(scene)) {
         const std::string layers = scene.substr(scene.find(':') + 1);
         if (!layers.empty() && layers.find_first_not_of("0123456789") == std::string::npos && std::stoi(layers) >= 20) return 3.0;
@@ -518,7 +561,7 @@ struct ScaleRun {
 ScaleRun measure_scale(const std::string& scene_name, int threads, double seconds) {
     return in_child<ScaleRun>([&]() {
         ScaleRun r;
-        const Scene scene = load_scene(scene_name);
+        const Scene scene = load_scale_scene(scene_name);
         World world(scene, WorldOptions{threads, false});
         r.threads = world.threads();
         r.ticks = std::max(1, int(std::lround(seconds / double(world.settings().dt))));
@@ -800,7 +843,8 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
             rows.push_back(std::move(row));
         };
         for (int t : thread_counts) add(softbody_row(scene, measure_scale(scene, t, seconds)));
-        if (!peer.empty()) {
+        // The peer runs each scene as it is (its configurations have sleeping on and off).
+        if (!peer.empty() && scene.find('@') == std::string::npos) {
             for (const PeerConfig& c : kPeerConfigs) add(run_peer(peer, scene, c.key, c.label, seconds));
         }
     }
@@ -1218,8 +1262,14 @@ int bench_command(int argc, char** argv) {
                  "(softbody_peer_bullet) was built");
     app.add_flag("--scale-only", scale_only, "run only that section");
     app.add_option("--scale-scenes", scale_text,
-                   "its scenes (default boxes:100,boxes:1000,boxes:3000,pyramid:10,pyramid:20,bin:1000,bin:3000,stack:10,stack:20; --quick boxes:100,pyramid:10)")
-        ->type_name("NAME,...");
+                   "its scenes, each NAME or NAME@KEY=VALUE (a key set as --set sets it) (default " +
+                       [] {
+                           std::string names;
+                           for (const std::string& name : kScaleScenes) names += (names.empty() ? "" : ",") + name;
+                           return names;
+                       }() +
+                       "; --quick boxes:100,pyramid:10)")
+        ->type_name("NAME[@KEY=VALUE],...");
     add_number(app, "--scale-seconds", scale_seconds, 0.02, 3600.0,
                "simulated seconds of each of its runs (default 10, 3 for pyramid:20 and up; --quick 0.4)")
         ->type_name("S");
@@ -1278,7 +1328,15 @@ int bench_command(int argc, char** argv) {
     if (scale_only || busy_only) sizes.clear(), kernels = meshes = bodies = search = false;
     for (const std::string& name : scale_scenes) {
         // Refused here, in one line, rather than in every child that would build it.
-        const Scene scene = load_scene(name);
+        Scene scene;
+        try {
+            scene = load_scale_scene(name);
+        } catch (const UsageError&) {
+            throw;
+        } catch (const std::exception& e) {
+            const std::string what = e.what();
+            throw UsageError("--scale-scenes: " + (what.rfind(name, 0) == 0 ? what : name + ": " + what));
+        }
         if (scene.rigid_bodies.empty()) throw UsageError("--scale-scenes: " + name + " has no rigid bodies");
     }
 

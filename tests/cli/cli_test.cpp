@@ -637,6 +637,21 @@ TEST(Bench, ScaleJsonGivesSoundnessFiguresOfAShortDrop) {
     EXPECT_EQ(rows[0].at("kinetic_J").get<double>(), rows[1].at("kinetic_J").get<double>());
 }
 
+TEST(Bench, ScaleSceneWithAKeyRunsThatVariant) {
+    // A 4-layer pyramid is asleep within a second; the same with sleeping off is not, and it
+    // still stands (nothing moves): the key reached the run, and the row keeps its full name.
+    const Result r = run({"bench", "--scale-only", "--scale-scenes", "pyramid:4,pyramid:4@sleeping=false", "--scale-seconds", "1",
+                          "--threads", "1", "--no-peer", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json rows = json::parse(r.out).at("scale").at("rows");
+    ASSERT_EQ(rows.size(), 2u) << r.out;
+    EXPECT_EQ(rows[0].at("scene"), "pyramid:4");
+    EXPECT_EQ(rows[0].at("sleeping"), 30);
+    EXPECT_EQ(rows[1].at("scene"), "pyramid:4@sleeping=false");
+    EXPECT_EQ(rows[1].at("sleeping"), 0);
+    EXPECT_EQ(rows[1].at("moving"), 0);
+}
+
 // --- softbody bench: a busy machine ----------------------------------------------------------
 // The section spins a process on one core for the length of its runs (a few ticks here). Its
 // times are never checked: only that it ran each scene at both thread counts, with the same
@@ -693,6 +708,8 @@ TEST(BadInput, BenchScaleOptionsAreRefusedInOneLine) {
     expect_refused({"bench", "--scale-only", "--scale-scenes", "cloud:100"}, {"--scale-scenes", "cloud:100", "no rigid bodies"});
     expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:100,"}, {"--scale-scenes", "empty"});
     expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:lots"}, {"boxes:lots"});
+    expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:100@sleeping"}, {"--scale-scenes", "NAME@KEY=VALUE"});
+    expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:100@nokey=1"}, {"--scale-scenes", "boxes:100@nokey=1", "nokey"});
     expect_refused({"bench", "--scale-only", "--no-scale"}, {"--scale-only", "--no-scale"});
     expect_refused({"bench", "--scale-seconds", "0"}, {"--scale-seconds"});
 }
