@@ -1269,7 +1269,7 @@ int bench_command(int argc, char** argv) {
                            return names;
                        }() +
                        "; --quick boxes:100,pyramid:10)")
-        ->type_name("NAME[@KEY=VALUE],...");
+        ->type_name("NAME,...");
     add_number(app, "--scale-seconds", scale_seconds, 0.02, 3600.0,
                "simulated seconds of each of its runs (default 10, 3 for pyramid:20 and up; --quick 0.4)")
         ->type_name("S");

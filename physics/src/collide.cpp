@@ -46,6 +46,7 @@
 #include "physics/collide.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -375,10 +376,21 @@ void hull_hull(const CollisionShape& A, const Transform& TA, const CollisionShap
 
 // --- Shapes ----------------------------------------------------------------------------------------
 
+namespace {
+// FNV-1a over the bits of the numbers that make a shape.
+std::uint64_t stamp_of(std::uint64_t stamp, double value) {
+    const auto bits = std::bit_cast<std::uint64_t>(value);
+    for (int k = 0; k < 8; ++k) stamp = (stamp ^ ((bits >> (8 * k)) & 0xff)) * 0x100000001b3ull;
+    return stamp;
+}
+constexpr std::uint64_t kStampStart = 0xcbf29ce484222325ull;
+}  // namespace
+
 CollisionShape sphere_shape(double radius) {
     CollisionShape shape;
     shape.radius = radius;
     shape.bounding_radius = radius;
+    shape.stamp = stamp_of(kStampStart, radius);
     return shape;
 }
 
@@ -414,6 +426,11 @@ CollisionShape hull_shape(std::shared_ptr<const ConvexHull> hull) {
         if (e.faces[0] == kNone || e.faces[1] == kNone) broken("an edge with one face");
     }
     for (const Vec3d& v : h.vertices) shape.bounding_radius = std::max(shape.bounding_radius, length(v));
+    // The vertices and the faces' planes make the hull (the same vertices in another order are
+    // another stamp: only a false "different", never a false "same").
+    shape.stamp = stamp_of(kStampStart, double(h.vertices.size()));
+    for (const Vec3d& v : h.vertices) shape.stamp = stamp_of(stamp_of(stamp_of(shape.stamp, v.x), v.y), v.z);
+    for (const ConvexHull::Face& f : h.faces) shape.stamp = stamp_of(stamp_of(stamp_of(stamp_of(shape.stamp, f.normal.x), f.normal.y), f.normal.z), f.offset);
     shape.hull = std::move(hull);
     return shape;
 }

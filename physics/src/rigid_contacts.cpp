@@ -1,7 +1,9 @@
 #include "rigid_contacts.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "collide_internal.h"
 #include "ground_contact.h"
 
 namespace softbody {
@@ -10,6 +12,67 @@ namespace {
 // The least work worth another thread: bodies (a box each), pairs (a narrow-phase test each).
 constexpr std::size_t kBodyGrain = 128;
 constexpr std::size_t kPairGrain = 32;
+}  // namespace
+
+namespace {
+
+// m and rad (as the largest change of an element of b's rotation in a's axes): how far two
+// hulls may move relative to each other before their points are found again. A tenth of a
+// millimetre: a fifth of the loaded slop (ContactSettings::stack_depth), of which the carried
+// points' depths are exact and only where along the faces they sit is not.
+constexpr double kReuseMove = 1e-4;
+constexpr double kReuseTurn = 1e-3;
+
+// collide() for two hulls, or their last points carried along when they have not moved
+// relative to each other; either way the answer is noted for the next find.
+void collide_hulls_again(const RigidContactScratch& scratch, const CollisionShape& A, std::uint32_t ia, const Pose& pa,
+                         const CollisionShape& B, std::uint32_t ib, const Pose& pb, double margin, std::vector<ContactPoint>& points,
+                         std::vector<CachedPair>& new_pairs, std::vector<CachedPoint>& new_points) {
+    const Transform Ta = world_transform(pa), Tb = world_transform(pb);
+    const Transform rel = relative_transform(Ta, Tb);
+    const std::uint64_t key = (std::uint64_t(ia) << 32) | ib;
+    const auto last = std::lower_bound(scratch.cache.pairs.begin(), scratch.cache.pairs.end(), key,
+                                       [](const CachedPair& c, std::uint64_t k) { return c.key < k; });
+    const auto still = [&](const CachedPair& c) {
+        if (c.stamp_a != A.stamp || c.stamp_b != B.stamp || margin > c.margin + kReuseMove) return false;
+        if (length(rel.x - c.x) > kReuseMove) return false;
+        for (int r = 0; r < 3; ++r) {
+            for (int k = 0; k < 3; ++k) {
+                if (std::abs(rel.R.m[r][k] - c.R.m[r][k]) > kReuseTurn) return false;
+            }
+        }
+        return true;
+    };
+    CachedPair note;
+    if (last != scratch.cache.pairs.end() && last->key == key && still(*last)) {
+        note = *last;
+        for (std::uint32_t k = last->first; k < last->first + last->count; ++k) {
+            const CachedPoint& c = scratch.cache.points[k];
+            const Vec3d on_a = Ta.apply(c.on_a), on_b = Tb.apply(c.on_b), n = Tb.R * c.normal_b;
+            points.push_back({(on_a + on_b) * 0.5, n, dot(on_b - on_a, n), c.feature});
+        }
+        note.first = std::uint32_t(new_points.size());
+        for (std::uint32_t k = last->first; k < last->first + last->count; ++k) new_points.push_back(scratch.cache.points[k]);
+    } else {
+        collide(A, pa, B, pb, margin, points);
+        note.key = key;
+        note.stamp_a = A.stamp;
+        note.stamp_b = B.stamp;
+        note.R = rel.R;
+        note.x = rel.x;
+        note.margin = margin;
+        note.first = std::uint32_t(new_points.size());
+        note.count = std::uint32_t(points.size());
+        const Mat3 Ra_t = Ta.R.transposed(), Rb_t = Tb.R.transposed();
+        for (const ContactPoint& p : points) {
+            // The two surfaces' points: a's depth/2 behind the middle along n, b's ahead.
+            const Vec3d on_a = p.point - p.normal * (0.5 * p.depth), on_b = p.point + p.normal * (0.5 * p.depth);
+            new_points.push_back({Ra_t * (on_a - Ta.x), Rb_t * (on_b - Tb.x), Rb_t * p.normal, p.feature});
+        }
+    }
+    new_pairs.push_back(note);
+}
+
 }  // namespace
 
 void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
@@ -37,11 +100,17 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
     if (scratch.found.size() < most) {
         scratch.found.resize(most);
         scratch.points.resize(most);
+        scratch.new_pairs.resize(most);
+        scratch.new_points.resize(most);
     }
     const std::size_t chunks = for_chunks(pool, scratch.pairs.size(), kPairGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<RigidContact>& found = scratch.found[chunk];
         std::vector<ContactPoint>& points = scratch.points[chunk];
+        std::vector<CachedPair>& new_pairs = scratch.new_pairs[chunk];
+        std::vector<CachedPoint>& new_points = scratch.new_points[chunk];
         found.clear();
+        new_pairs.clear();
+        new_points.clear();
         for (std::size_t k = begin; k < end; ++k) {
             const BodyPair& pair = scratch.pairs[k];
             const RigidBody &A = bodies[pair.a], &B = bodies[pair.b];
@@ -53,7 +122,13 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
             const double* sa = &start[ia * rigid::kStateSize];
             const double* sb = &start[ib * rigid::kStateSize];
             points.clear();
-            collide(shapes[ia], pose_of(sa), shapes[ib], pose_of(sb), scratch.margins[ia] + scratch.margins[ib], points);
+            const double margin = scratch.margins[ia] + scratch.margins[ib];
+            if (shapes[ia].is_sphere() || shapes[ib].is_sphere()) {
+                collide(shapes[ia], pose_of(sa), shapes[ib], pose_of(sb), margin, points);
+            } else {
+                collide_hulls_again(scratch, shapes[ia], ia, pose_of(sa), shapes[ib], ib, pose_of(sb), margin, points, new_pairs,
+                                    new_points);
+            }
             if (points.empty()) continue;
             const Vec3d xa{sa[rigid::X], sa[rigid::X + 1], sa[rigid::X + 2]}, xb{sb[rigid::X], sb[rigid::X + 1], sb[rigid::X + 2]};
             const RigidBody &a = bodies[ia], &b = bodies[ib];
@@ -76,6 +151,18 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
         }
     });
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) out.insert(out.end(), scratch.found[chunk].begin(), scratch.found[chunk].end());
+    // This find's answers, by key, for the next.
+    scratch.cache.pairs.clear();
+    scratch.cache.points.clear();
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        const auto offset = std::uint32_t(scratch.cache.points.size());
+        for (CachedPair pair : scratch.new_pairs[chunk]) {
+            pair.first += offset;
+            scratch.cache.pairs.push_back(pair);
+        }
+        scratch.cache.points.insert(scratch.cache.points.end(), scratch.new_points[chunk].begin(), scratch.new_points[chunk].end());
+    }
+    std::sort(scratch.cache.pairs.begin(), scratch.cache.pairs.end(), [](const CachedPair& x, const CachedPair& y) { return x.key < y.key; });
 }
 
 }  // namespace softbody

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "rigid_contacts.h"
 #include "soft_contacts.h"
 #include "physics/world.h"
 
@@ -23,6 +24,7 @@ WorldSnapshot World::snapshot() const {
     out.rigid = y_;
     out.rigid_tick_prev = y_tick_prev_;
     out.contacts = contacts_;
+    out.pair_cache = rigid_contact_scratch_->cache;
     out.ticks = ticks_;
     out.status = status_;
     out.divergence = divergence_;
@@ -99,6 +101,7 @@ void World::restore(const WorldSnapshot& s) {
     y_ = s.rigid;
     y_tick_prev_ = s.rigid_tick_prev;
     contacts_ = s.contacts;
+    rigid_contact_scratch_->cache = s.pair_cache;  // its body indices are the snapshot's, as now
     previous_contacts_.clear();
     ticks_ = s.ticks;
     status_ = s.status;
@@ -118,7 +121,8 @@ std::size_t WorldSnapshot::bytes() const {
                  (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
     }
     return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size()) * sizeof(double) +
-           (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + sleep.island.size() * sizeof(std::uint32_t) +
+           (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + pair_cache.pairs.size() * sizeof(CachedPair) +
+           pair_cache.points.size() * sizeof(CachedPoint) + sleep.island.size() * sizeof(std::uint32_t) +
            (rigid_built.size() + rigid_defs.size()) * sizeof(RigidBodyDef) + springs.size() * sizeof(SpringDef) +
            links.size() * sizeof(Link) + divergence.size();
 }

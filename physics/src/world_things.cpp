@@ -236,6 +236,7 @@ void World::destroy(RigidBodyId id) {
     rigid_defs_.erase(rigid_defs_.begin() + std::ptrdiff_t(b));
     rigid_built_.erase(rigid_built_.begin() + std::ptrdiff_t(b));
     shapes_.erase(shapes_.begin() + std::ptrdiff_t(b));
+    rigid_contact_scratch_->cache = {};  // its pairs are by body index, which moved
     const auto first = std::ptrdiff_t(b * rigid::kStateSize), last = first + rigid::kStateSize;
     for (auto* y : {&y_, &y_tick_prev_}) y->erase(y->begin() + first, y->begin() + last);
     sleep_.rest_time.erase(sleep_.rest_time.begin() + std::ptrdiff_t(b));
@@ -471,6 +472,7 @@ void World::build() {
     y_tick_prev_ = y_;
     contacts_.clear();
     previous_contacts_.clear();
+    rigid_contact_scratch_->cache = {};  // a reset world starts as a new one
     reset_sleep();
     ticks_ = 0;
     status_ = Status::Ok;

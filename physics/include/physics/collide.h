@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "physics/convex_hull.h"
+#include "physics/mat3.h"
 #include "physics/quat.h"
 #include "physics/rigid_body.h"
 #include "physics/vec3.h"
@@ -57,6 +58,7 @@ struct CollisionShape {
     std::shared_ptr<const ConvexHull> hull;  // or a hull (null for a sphere)
     std::vector<HullEdge> edges;             // the hull's edges in its own order, with their faces
     double bounding_radius = 0.0;            // the farthest point from the centre of mass, m
+    std::uint64_t stamp = 0;                 // from its geometry's bits: equal stamps, the same shape
 
     bool is_sphere() const { return hull == nullptr; }
 };
@@ -76,6 +78,26 @@ struct ContactPoint {
     std::uint32_t feature = 0; // which features of a and b made it: the same while the same
                                // features touch, different for different ones within a pair
                                // (for warm starting; see collide.cpp for the packing)
+};
+
+// The narrow phase's last answer for each pair of hulls it tested (rigid_contacts.h), kept with
+// the world's state (a snapshot holds it): each point as its two surface points, each in its own
+// body's axes, and the normal in b's.
+struct CachedPoint {
+    Vec3d on_a, on_b, normal_b;
+    std::uint32_t feature = 0;
+};
+struct CachedPair {
+    std::uint64_t key = 0;  // a << 32 | b (body indices), a the moving body (the normal points out of b)
+    std::uint64_t stamp_a = 0, stamp_b = 0;  // the two shapes' stamps
+    Mat3 R;                 // b's axes in a's when the answer was found
+    Vec3d x;                // b's centre in a's axes then
+    double margin = 0.0;
+    std::uint32_t first = 0, count = 0;  // its points in PairCache::points
+};
+struct PairCache {
+    std::vector<CachedPair> pairs;  // by key
+    std::vector<CachedPoint> points;
 };
 
 // Appends the contacts between a at pose pa and b at pose pb: nothing when they are farther

@@ -125,6 +125,7 @@ struct WorldSnapshot {
     std::vector<Link> links;  // the springs resolved, rest lengths as measured
     std::vector<double> rigid, rigid_tick_prev;  // Listing 10's flat state, now and a tick before
     std::vector<RigidContact> contacts;          // the last step's: the next one starts from them
+    PairCache pair_cache;                        // the narrow phase's last answers
     std::uint64_t ticks = 0;
     Status status = Status::Ok;
     std::string divergence;
