@@ -1,7 +1,6 @@
 #include "block_solver.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 namespace softbody {
@@ -31,38 +30,65 @@ bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4
     return true;
 }
 
+// For n points, the sets of them (bit i: point i) in the order they are tried: the most points
+// first, and among sets of one size the larger bit pattern first. 0 ends a list.
+constexpr unsigned kSetsBySize[5][16] = {
+    {0},
+    {1, 0},
+    {3, 2, 1, 0},
+    {7, 6, 5, 3, 4, 2, 1, 0},
+    {15, 14, 13, 11, 7, 12, 10, 9, 6, 5, 3, 8, 4, 2, 1, 0},
+};
+
+}  // namespace
+
+namespace {
+
+// invert() for a size known when compiled, so that its loops unroll: the same operations in the
+// same order as for any n.
+template <int N>
+bool invert_fixed(const double (&A)[4][4], double (&inverse)[4][4]) {
+    double M[N][2 * N];
+    for (int r = 0; r < N; ++r) {
+        for (int c = 0; c < N; ++c) {
+            M[r][c] = A[r][c];
+            M[r][N + c] = r == c ? 1.0 : 0.0;
+        }
+    }
+    for (int c = 0; c < N; ++c) {
+        int pivot = c;
+        for (int r = c + 1; r < N; ++r) {
+            if (std::abs(M[r][c]) > std::abs(M[pivot][c])) pivot = r;
+        }
+        if (!(std::abs(M[pivot][c]) > 0.0)) return false;
+        if (pivot != c) {
+            for (int k = 0; k < 2 * N; ++k) std::swap(M[c][k], M[pivot][k]);
+        }
+        const double p = 1.0 / M[c][c];
+        for (int k = 0; k < 2 * N; ++k) M[c][k] *= p;
+        for (int r = 0; r < N; ++r) {
+            if (r == c || M[r][c] == 0.0) continue;
+            const double f = M[r][c];
+            for (int k = 0; k < 2 * N; ++k) M[r][k] -= f * M[c][k];
+        }
+    }
+    for (int r = 0; r < N; ++r)
+        for (int c = 0; c < N; ++c) inverse[r][c] = M[r][N + c];
+    return true;
+}
+
 }  // namespace
 
 // The inverse of an n x n matrix (n <= 4) by Gauss-Jordan elimination with partial pivoting;
 // false when a pivot vanishes.
 bool invert(int n, const double (&A)[4][4], double (&inverse)[4][4]) {
-    double M[4][8];
-    for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < n; ++c) {
-            M[r][c] = A[r][c];
-            M[r][n + c] = r == c ? 1.0 : 0.0;
-        }
+    switch (n) {
+        case 1: return invert_fixed<1>(A, inverse);
+        case 2: return invert_fixed<2>(A, inverse);
+        case 3: return invert_fixed<3>(A, inverse);
+        case 4: return invert_fixed<4>(A, inverse);
+        default: return n == 0;
     }
-    for (int c = 0; c < n; ++c) {
-        int pivot = c;
-        for (int r = c + 1; r < n; ++r) {
-            if (std::abs(M[r][c]) > std::abs(M[pivot][c])) pivot = r;
-        }
-        if (!(std::abs(M[pivot][c]) > 0.0)) return false;
-        if (pivot != c) {
-            for (int k = 0; k < 2 * n; ++k) std::swap(M[c][k], M[pivot][k]);
-        }
-        const double p = 1.0 / M[c][c];
-        for (int k = 0; k < 2 * n; ++k) M[c][k] *= p;
-        for (int r = 0; r < n; ++r) {
-            if (r == c || M[r][c] == 0.0) continue;
-            const double f = M[r][c];
-            for (int k = 0; k < 2 * n; ++k) M[r][k] -= f * M[c][k];
-        }
-    }
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) inverse[r][c] = M[r][n + c];
-    return true;
 }
 
 void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], BlockInverse& block) {
@@ -163,15 +189,15 @@ void solve_block(const BlockInverse& block, int n, const double (&K)[4][4], cons
         for (int i = 0; i < n; ++i) x[i] = 0.0;
         return;
     }
-    // Smaller sets, largest first (the full set again when it was not tried above).
-    for (int size = all_points ? n - 1 : n; size >= 1; --size) {
-        for (unsigned set = full; set > 0; --set) {
-            if (std::popcount(set) != size) continue;
-            double y[4];
-            if (solve_set(n, set, K, b, y) && fits(set, y)) {
-                for (int i = 0; i < n; ++i) x[i] = y[i];
-                return;
-            }
+    // Smaller sets, largest first (the full set again when it was not tried above); of one
+    // size, the larger bit pattern first.
+    for (const unsigned* set_at = kSetsBySize[n]; *set_at != 0; ++set_at) {
+        const unsigned set = *set_at;
+        if (all_points && set == full) continue;
+        double y[4];
+        if (solve_set(n, set, K, b, y) && fits(set, y)) {
+            for (int i = 0; i < n; ++i) x[i] = y[i];
+            return;
         }
     }
     for (int i = 0; i < n; ++i) x[i] = 0.0;  // none: every point lets go
