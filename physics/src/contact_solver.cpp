@@ -23,11 +23,6 @@ constexpr double kStaleSpeed = 1e-4;
 // Passes of a manifold's normal impulses and its friction in turn, at most (solve()).
 constexpr int kCouplingPasses = 8;
 
-// m/s: a body whose fastest point a relax pass changed by less than this is settled; the next
-// pass leaves its manifolds alone unless another body of theirs moved (ContactSolver::solve).
-// In a substep of 5 ms it stands for half a micrometre.
-constexpr double kRelaxSettled = 3e-4;
-
 // A point closer than this (m) touches: pushed apart softly where it overlaps (solve()).
 constexpr double kSpeculative = 1e-6;
 
@@ -170,7 +165,6 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
             s.round = body.shape == ShapeKind::Sphere;
-            s.reach = body.bounding_radius;
             at = std::int32_t(bodies_.size());
             bodies_.push_back(s);
         }
@@ -605,33 +599,8 @@ void ContactSolver::warm_start(Manifold& m) {
 
 // One pass over every manifold: its normal impulses together toward each point's target, then
 // friction at its centre. `bias`: push overlaps apart (the solve), or not (the relax).
-// `only_disturbed`: only the manifolds with a body whose velocity the last pass changed by more
-// than kRelaxSettled (disturbed_); another's two bodies move as they did when it was last
-// solved, and solving it again would change next to nothing. Each manifold notes how much it
-// changed its bodies' velocities (the fastest point's change, |dv| + |dw| reach).
-void ContactSolver::solve(bool bias, bool only_disturbed) {
-    const auto change = [](const Body& body, const Vec3d& v, const Vec3d& w) {
-        return length(body.v - v) + length(body.w - w) * body.reach;
-    };
-    each_in_slabs([&](Manifold& m) {
-        if (only_disturbed && !disturbed_[m.a] && !disturbed_[m.b]) {
-            m.change = 0.0;
-            return;
-        }
-        const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        const Vec3d va = A.v, wa = A.w, vb = B.v, wb = B.w;
-        solve_manifold(m, bias);
-        m.change = std::max(change(A, va, wa), change(B, vb, wb));
-    });
-}
-
-// The bodies whose velocities the last pass changed by more than kRelaxSettled.
-void ContactSolver::mark_disturbed() {
-    disturbed_.assign(bodies_.size(), 0);
-    for (const Manifold& m : manifolds_) {
-        if (m.change > kRelaxSettled) disturbed_[m.a] = disturbed_[m.b] = 1;
-    }
-    disturbed_[0] = 0;  // the static world never moves
+void ContactSolver::solve(bool bias) {
+    each_in_slabs([&](Manifold& m) { solve_manifold(m, bias); });
 }
 
 void ContactSolver::solve_manifold(Manifold& m, bool bias) {
@@ -861,13 +830,7 @@ void ContactSolver::substep(const ContactWorld& world) {
     refresh(world);
     separations();
     for (Point& p : points_) p.s_moved = p.s;
-    // The relax: every manifold once, then again only where the pass before still changed
-    // something (most of a resting pile settles in one pass; its few busy contacts and their
-    // neighbours take all of them).
-    for (int pass = 0; pass < settings_.relax_passes; ++pass) {
-        if (pass > 0) mark_disturbed();
-        solve(false, pass > 0);
-    }
+    for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
 
     // The energy of this substep's contacts, island by island: what restitution may give back.
     for (std::size_t b = 1; b < bodies_.size(); ++b) {

@@ -26,8 +26,7 @@
 //                              the speed they came in with, at that instant
 //                 positions    the free step's positions moved on by h times the velocity the
 //                              contacts changed, the turn redone with the new L
-//                 relax        the same without the push apart (a few passes, the later ones
-//                              only where the pass before still moved a body), so that pushing
+//                 relax        the same without the push apart (a few passes), so that pushing
 //                              overlaps apart leaves no velocity behind, and no energy
 //   finish      the bounces of points that met their surface during the tick, from there, and the
 //               impulses kept for the next tick.
@@ -140,7 +139,6 @@ struct SolverBody {
     Vec3d v_free, w_free;      // as the integrator left them this substep
     Vec3d v_start, w_start;    // as the substep began
     bool round = false;        // a sphere: the same surface however it turns (its anchors do not turn with it)
-    double reach = 0.0;        // its bounding radius (0 for a particle), m
     Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
     Mat3 turn;                 // the turn of its anchors over the same (none for a round body)
     Vec3d dp_free;             // the same to the free step's end
@@ -194,7 +192,6 @@ struct SolverManifold {
     // point j), and what solves it for all points pushing (block_solver.h).
     double K[4][4] = {};
     BlockInverse block;
-    double change = 0.0;  // the largest change of a body point's velocity in its last solve, m/s
 };
 
 class ContactSolver {
@@ -221,8 +218,7 @@ private:
     void store(const ContactWorld& world);
     void separations();
     void free_offsets();
-    void solve(bool bias, bool only_disturbed = false);
-    void mark_disturbed();
+    void solve(bool bias);
     void restitute(bool after_positions);
     void forget_bounced();
     double work(const Body& body, bool shown) const;
@@ -245,7 +241,6 @@ private:
     std::vector<std::int32_t> rigid_index_;  // rigid body -> solver body (0: static or not in contact)
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
-    std::vector<std::uint8_t> disturbed_;    // per solver body: the last relax pass moved it (solve)
     ContactEnergy energy_;
     // The manifolds by slab (slabs()): slab c is slab_order_[slab_start_[c]] up to
     // slab_start_[c + 1], no two slabs sharing a moving body; the last group, the manifolds
