@@ -46,8 +46,8 @@
 #include "physics/collide.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -379,7 +379,8 @@ void hull_hull(const CollisionShape& A, const Transform& TA, const CollisionShap
 namespace {
 // FNV-1a over the bits of the numbers that make a shape.
 std::uint64_t stamp_of(std::uint64_t stamp, double value) {
-    const auto bits = std::bit_cast<std::uint64_t>(value);
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
     for (int k = 0; k < 8; ++k) stamp = (stamp ^ ((bits >> (8 * k)) & 0xff)) * 0x100000001b3ull;
     return stamp;
 }
