@@ -764,19 +764,19 @@ std::string mm(double metres) {
 }
 
 void print_scale_header() {
-    std::printf("%-12s %-23s %6s %5s %6s %10s %8s %7s %7s %10s %8s\n", "scene", "run", "bodies", "s", "ticks", "ms/tick",
+    std::printf("%-25s %-23s %6s %5s %6s %10s %8s %7s %7s %10s %8s\n", "scene", "run", "bodies", "s", "ticks", "ms/tick",
                 "depth mm", "moving", "asleep", "KE left J", "top mm");
 }
 
 void print_scale_row(const ScaleRow& r) {
     const std::string run = r.engine + ", " + r.config;
     if (r.status == "failed") {
-        std::printf("%-12s %-23s  failed: %s\n", r.scene.c_str(), run.c_str(), r.note.c_str());
+        std::printf("%-25s %-23s  failed: %s\n", r.scene.c_str(), run.c_str(), r.note.c_str());
         return;
     }
     const std::string depth = r.penetration_m ? mm(*r.penetration_m) : "-", top = r.top_moved_m ? mm(*r.top_moved_m) : "-";
     const std::string asleep = r.sleeping ? std::to_string(*r.sleeping) : "-";
-    std::printf("%-12s %-23s %6d %5.3g %6d %10.4g %8s %7d %7s %10.3g %8s%s\n", r.scene.c_str(), run.c_str(), r.bodies,
+    std::printf("%-25s %-23s %6d %5.3g %6d %10.4g %8s %7d %7s %10.3g %8s%s\n", r.scene.c_str(), run.c_str(), r.bodies,
                 r.seconds, r.ticks, r.ms_per_tick, depth.c_str(), r.moving, asleep.c_str(), r.kinetic_J, top.c_str(),
                 r.status == "diverged" ? "  DIVERGED" : "");
 }
