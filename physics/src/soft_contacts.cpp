@@ -195,13 +195,15 @@ void SoftContacts::find_inside(const std::vector<SoftBody>& bodies, std::size_t 
 }
 
 // Which way each closed surface faces this tick (Surface::orient): its volume now against its
-// volume at rest.
+// volume at rest; and which of its triangles are turned over (mark_turned: inside() asks the
+// winding number beside them).
 void SoftContacts::orient_surfaces(const std::vector<SoftBody>& bodies) {
     for (std::size_t b = 0; b < bodies.size(); ++b) {
         Surface& s = surfaces_[b];
         if (!s.closed) continue;
         const double ratio = six_volume(s.triangles, bodies[b].x) / s.rest_volume;
         s.orient = std::abs(ratio) <= 0.25 ? 0.0f : float(ratio > 0.0 ? 1.0 : -1.0) * (s.rest_volume < 0.0 ? -1.0f : 1.0f);
+        mark_turned(s, bodies[b].x);
     }
 }
 

@@ -20,6 +20,24 @@ double six_volume(const std::vector<std::uint32_t>& triangles, const Vec3Array& 
 // Closed: every edge is shared by exactly two triangles that run along it in opposite
 // directions (wound alike). Found by sorting the edges by their two ends: a closed surface's
 // come in pairs, one each way.
+namespace {
+
+// Each triangle's facing from the surface's centre (the mean of its corners) at points x: the
+// sign of its normal along the way from the centre to its middle.
+void facing(const TriangleSurface& s, const Vec3Array& x, std::vector<std::int8_t>& out) {
+    Vec3d centre;
+    for (const std::uint32_t v : s.triangles) centre += Vec3d(x[v]);
+    centre = centre / double(s.triangles.size());
+    for (std::size_t t = 0; t < out.size(); ++t) {
+        const std::uint32_t* v = &s.triangles[3 * t];
+        const Vec3d a(x[v[0]]), b(x[v[1]]), c(x[v[2]]);
+        const double side = dot(cross(b - a, c - a), (a + b + c) / 3.0 - centre);
+        out[t] = side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
+    }
+}
+
+}  // namespace
+
 void close_surface(TriangleSurface& s, const Vec3Array& rest, std::size_t points) {
     const std::size_t count = s.triangles.size() / 3;
     s.closed = false;
@@ -61,6 +79,21 @@ void close_surface(TriangleSurface& s, const Vec3Array& rest, std::size_t points
     s.fan.assign(s.triangles.size(), 0);
     std::vector<std::uint32_t> filled(s.fan_begin.begin(), s.fan_begin.end() - 1);
     for (std::uint32_t at = 0; at < s.triangles.size(); ++at) s.fan[filled[s.triangles[at]]++] = at / 3;
+    s.rest_facing.resize(count);
+    facing(s, rest, s.rest_facing);
+    s.turned.assign(count, 0);
+    s.any_turned = false;
+}
+
+void mark_turned(TriangleSurface& s, const Vec3Array& x) {
+    if (!s.closed) return;
+    std::vector<std::int8_t> now(s.rest_facing.size());
+    facing(s, x, now);
+    s.any_turned = false;
+    for (std::size_t t = 0; t < now.size(); ++t) {
+        s.turned[t] = s.rest_facing[t] != 0 && now[t] != s.rest_facing[t];
+        s.any_turned = s.any_turned || s.turned[t];
+    }
 }
 
 Vec3 outward(const TriangleSurface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w) {
@@ -118,8 +151,22 @@ bool inside(const TriangleSurface& s, const Vec3Array& x, std::uint32_t tri, con
     // the outward direction. There, and only there, the winding number says: the solid angle
     // the whole surface spans seen from p over 4 pi, 1 inside and 0 outside, whatever its
     // folds.
-    const Vec3 out = outward(s, x, tri, w);
     const int zeros = (w[0] == 0.0f) + (w[1] == 0.0f) + (w[2] == 0.0f);
+    // Beside a triangle turned over (a face pushed through its neighbours), the outward
+    // direction may point in: only the winding number says. A point in a pocket the turned
+    // faces wrap (winding -1) is inside too: it is out of the body only by going through them.
+    if (s.any_turned) {
+        bool turned = s.turned[tri] != 0;
+        if (zeros == 1) {
+            const std::uint32_t k = w[0] == 0.0f ? 0 : w[1] == 0.0f ? 1 : 2;
+            turned = turned || s.turned[s.across[3 * tri + (k + 1) % 3]] != 0;
+        } else if (zeros > 1) {
+            const std::uint32_t corner = s.triangles[3 * tri + (w[0] != 0.0f ? 0 : w[1] != 0.0f ? 1 : 2)];
+            for (std::uint32_t f = s.fan_begin[corner]; f < s.fan_begin[corner + 1] && !turned; ++f) turned = s.turned[s.fan[f]] != 0;
+        }
+        if (turned) return std::abs(solid_angle(s.triangles, x, p)) > 2.0 * 3.14159265358979323846;
+    }
+    const Vec3 out = outward(s, x, tri, w);
     const float size = length(out), dist = length(away);
     const float clear = zeros == 0 ? 0.5f : zeros == 1 ? 1.0f : 1.5f;  // of a flat sheet's 1, 2 and 2 pi
     const float along = dot(away, out);

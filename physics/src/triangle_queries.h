@@ -69,6 +69,11 @@ struct TriangleSurface {
     std::vector<std::uint32_t> across;     // per triangle and edge (k to k + 1): the triangle on its other side
     std::vector<std::uint32_t> fan_begin;  // per point: its triangles are fan[fan_begin[i]] up to fan_begin[i + 1]
     std::vector<std::uint32_t> fan;
+    // Per triangle: which way it faced from the surface's centre at rest (+1 away, -1 toward),
+    // and whether it faces the other way now (mark_turned; empty until then).
+    std::vector<std::int8_t> rest_facing;
+    std::vector<std::uint8_t> turned;
+    bool any_turned = false;
 };
 
 // Six times the volume the triangles enclose at points x, sum x0 . (x1 x x2): positive when
@@ -79,6 +84,11 @@ double six_volume(const std::vector<std::uint32_t>& triangles, const Vec3Array& 
 // at `rest`, and its neighbours: each triangle's across each of its edges, each point's fan of
 // triangles. Sets closed, rest_volume, orient, across, fan_begin and fan.
 void close_surface(TriangleSurface& s, const Vec3Array& rest, std::size_t points);
+
+// Which triangles of a closed surface face the other way from its centre (the mean of its
+// corners) than they did at rest: turned over through their neighbours, as a face of a body
+// squeezed hard can be. Their outward direction says nothing about which side is in (inside()).
+void mark_turned(TriangleSurface& s, const Vec3Array& x);
 
 // A closed surface's outward direction at the point of triangle `tri` with weights w (not of
 // unit length): the face's normal on the face, the two faces' beside an edge, and the faces'
@@ -91,7 +101,8 @@ Vec3 outward(const TriangleSurface& s, const Vec3Array& x, std::uint32_t tri, co
 double solid_angle(const std::vector<std::uint32_t>& triangles, const Vec3Array& x, const Vec3& p);
 
 // Whether point p, `away` from its nearest point (triangle tri, weights w) of closed surface
-// s, is inside it: by outward() where that is clear, else by the winding number.
+// s, is inside it: by outward() where that is clear and no triangle there is turned over
+// (mark_turned), else by the winding number.
 bool inside(const TriangleSurface& s, const Vec3Array& x, std::uint32_t tri, const std::array<float, 3>& w, const Vec3& p,
             const Vec3& away);
 
