@@ -42,6 +42,18 @@ constexpr std::size_t kBlocks = 8;
 
 Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 
+// How a body's contact anchors have turned since the contacts were found (at q0; now at q): with
+// the body, for a point of its surface is a point of the body; not at all for a sphere. A
+// sphere's point of contact is not a point of the ball: it is wherever the ball is nearest the
+// other side, centre - r n, however the ball turns. Turned with the ball, the anchor at the
+// bottom of a ball rolling at w would rise by r (1 - cos(w t)) over the tick (6 mm for a 15 cm
+// ball at 2.2 m/s), the solver would read that as a gap opening under it, let the ball fall into
+// it, and the push apart would pull it out only slowly: it rolled 13 mm deep, and a small fast
+// one went through the ground.
+Mat3 anchor_turn(const SolverBody& s, const Quat& q) {
+    return s.round ? Mat3::identity() : rotation_of(q) * rotation_of(s.q0).transposed();
+}
+
 // q turned further by the small turn theta (world axes), its length kept.
 Quat turned(const Quat& q, const Vec3d& theta) {
     const double angle = length(theta);
@@ -316,6 +328,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
             s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            s.round = body.shape == ShapeKind::Sphere;
             at = std::int32_t(bodies_.size());
             bodies_.push_back(s);
         }
@@ -590,9 +603,9 @@ void ContactSolver::load(const ContactWorld& world) {
             // Where the substep began, and where the free step took it: the positions move on from
             // the integrator's by the contacts' share.
             s.dp = s.x - s.x0;
-            s.turn = rotation_of(q_start) * rotation_of(s.q0).transposed();
+            s.turn = anchor_turn(s, q_start);
             s.dp_free = Vec3d{y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]} - s.x0;
-            s.turn_free = rotation_of(q) * rotation_of(s.q0).transposed();
+            s.turn_free = anchor_turn(s, q);
         } else {
             const SolverParticles& p = world.particles[std::size_t(s.soft)];
             const Vec3Array& v0 = *world.particle_step_start_v[std::size_t(s.soft)];
@@ -650,6 +663,7 @@ void ContactSolver::refresh(const ContactWorld& world) {
         if (!A.refreshed && !B.refreshed) return;
         const auto anchor = [&](const Body& s, const Vec3d& r0) {
             if (s.kind != Body::Kind::Rigid) return s.x;
+            if (s.round) return s.x + r0;  // anchor_turn
             return s.x + rotation_of(s.q_now) * (rotation_of(s.q0).transposed() * r0);
         };
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
@@ -967,7 +981,7 @@ void ContactSolver::substep(const ContactWorld& world) {
             s.x = Vec3d{y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q_now = q;
             s.dp = s.x - s.x0;
-            s.turn = rotation_of(q) * rotation_of(s.q0).transposed();
+            s.turn = anchor_turn(s, q);
         } else {
             SolverParticles& p = world.particles[std::size_t(s.soft)];
             p.x[s.index] = float(double(p.x[s.index]) + dx.x);

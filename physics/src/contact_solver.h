@@ -137,8 +137,9 @@ struct SolverBody {
     Vec3d v, w;                // now
     Vec3d v_free, w_free;      // as the integrator left them this substep
     Vec3d v_start, w_start;    // as the substep began
+    bool round = false;        // a sphere: the same surface however it turns (its anchors do not turn with it)
     Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
-    Mat3 turn;                 // the turn over the same
+    Mat3 turn;                 // the turn of its anchors over the same (none for a round body)
     Vec3d dp_free;             // the same to the free step's end
     Mat3 turn_free;
 };
