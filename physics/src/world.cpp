@@ -434,8 +434,12 @@ void World::step(float h) {
     // Where the substep begins: symplectic Euler's positions move on from here, and each
     // contact's approach is measured from here.
     if (!rigid_.empty()) y_step_start_ = y_;
-    if (contacts) {
+    // And where each particle began it, for its impacts with the ground (ground_contact.h).
+    if (contacts || params_.ground) {
         for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
+    }
+    if (params_.ground) {
+        for (SoftBody& body : soft_) copy(body.x, body.x_step_start);
     }
     if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_, *pool_);
     switch (params_.integrator) {
@@ -464,7 +468,10 @@ void World::step(float h) {
             for (SoftBody& body : soft_) rk4_begin(body);
             evaluate_forces(0, true);
             for (int s = 1; s <= 3; ++s) {
-                for (SoftBody& body : soft_) rk4_stage(body, s, h);
+                for (SoftBody& body : soft_) {
+                    rk4_stage(body, s, h);
+                    hold_stage_on_ground(body, params_);
+                }
                 flat_rk4_stage(y_, k_[s - 1], rk4_stage_offset(s, hd), y_stage_);
                 evaluate_forces(s, false);
                 for (SoftBody& body : soft_) rk4_accumulate(body, s);
