@@ -319,6 +319,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (b < 0) return 0;
         const RigidBody& body = world.bodies[std::size_t(b)];
         if (body.fixed) return 0;
+        if (!world.asleep.empty() && world.asleep[std::size_t(b)]) return 0;  // asleep: as still as a fixed body
         std::int32_t& at = rigid_index_[std::size_t(b)];
         if (at == 0) {
             Body s;

@@ -105,6 +105,7 @@ struct ContactWorld {
     std::span<SolverParticles> particles;
     std::span<const Vec3Array* const> particle_step_start_v;  // each soft body's v as the substep began
     ThreadPool* pool = nullptr;           // the world's threads (none: this one)
+    std::span<const std::uint8_t> asleep; // per rigid body: 1 while it sleeps (static to the particles resting on it: sleep.h)
 };
 
 // A soft constraint (Box2D v3's b2MakeSoft): a spring of `hertz` with damping ratio `zeta`,

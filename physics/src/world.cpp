@@ -541,7 +541,7 @@ ContactWorld World::contact_world() {
         p.z0 = body.x_step_start.z.data();
         solver_particle_v_[b] = &body.v_step_start;
     }
-    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_, pool_.get()};
+    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_, pool_.get(), asleep_};
 }
 
 // Every contact within reach of `reach` seconds (the tick, or the rest of it), found where the
