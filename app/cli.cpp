@@ -9,6 +9,8 @@
 #include <iostream>
 
 #include "physics/error.h"
+#include "physics/generated.h"
+#include "physics/lesson.h"
 #include "physics/scene_io.h"
 
 namespace softbody::app {
@@ -46,6 +48,38 @@ std::string whole_problem(std::string_view text, std::int64_t min, std::int64_t 
 // A check that CLI11 runs on the text before converting it; its message follows "OPTION: ".
 CLI::Validator check(std::function<std::string(const std::string&)> problem) {
     return CLI::Validator([problem = std::move(problem)](std::string& text) { return problem(text); }, "", "");
+}
+
+}  // namespace
+
+namespace {
+
+// The bundled assets: beside the installed executable (PREFIX/bin/softbody finds
+// PREFIX/share/softbody/assets), else the source tree's the build was made from; in the
+// browser, the packaged folder.
+std::string find_assets() {
+#if !defined(__EMSCRIPTEN__)
+    std::error_code error;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "softbody" / "assets";
+        if (std::filesystem::exists(installed / "scenes" / "default.json", error)) return installed.string();
+    }
+#endif
+    return SOFTBODY_ASSETS_DIR;
+}
+
+// A relative scene path that does not exist from here: the same path from the assets' folder
+// ("assets/scenes/x.json" run from anywhere), or a bundled scene's name ("spring.json").
+std::string find_scene(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::path p(path);
+    if (p.is_absolute() || is_generated(path) || std::filesystem::exists(p, error)) return path;
+    const std::filesystem::path assets(assets_dir());
+    for (const std::filesystem::path& candidate : {assets.parent_path() / p, assets / p, assets / "scenes" / p}) {
+        if (std::filesystem::exists(candidate, error)) return candidate.lexically_normal().string();
+    }
+    return path;  // not found anywhere: its reader says so, naming the path as given
 }
 
 }  // namespace
@@ -121,6 +155,9 @@ std::string exit_codes_help(bool can_diverge) {
 void SceneOptions::add_to(CLI::App& app) {
     app.add_option("--scene", scene, "scene file (JSON) or a generated one, pile:100 (default assets/scenes/default.json)")
         ->type_name("FILE");
+    app.add_option("--lesson", lesson, "lesson N, as softbody lessons numbers them (its scene file; default: none)")
+        ->type_name("N")
+        ->check(check([](const std::string& text) { return whole_problem(text, 1, std::int64_t(lessons().size())); }));
     app.add_option("--mesh", mesh, "mesh (.obj, .off or cloud:N), sized to 1 m and stood up (default: the scene's)")
         ->type_name("FILE");
     app.add_option("--set", sets, "a key over the scene's (NAME.KEY=VALUE: a named body's or spring's; softbody keys lists them); repeatable (default: none)")
@@ -134,8 +171,10 @@ void SceneOptions::add_to(CLI::App& app) {
 }
 
 Scene SceneOptions::resolve() const {
+    if (lesson != 0 && !scene.empty()) throw UsageError("give --scene or --lesson, not both");
     Scene resolved;
-    if (!scene.empty()) resolved = load_scene(scene);
+    if (lesson != 0) resolved = load_scene(lesson_path(lesson));
+    else if (!scene.empty()) resolved = load_scene(find_scene(scene));
     else if (mesh.empty()) resolved = load_scene(default_scene_path());
     if (!mesh.empty()) {
         // A mesh brought on the command line: every soft body's (or, in a scene without one, a
@@ -155,12 +194,23 @@ Scene SceneOptions::resolve() const {
 }
 
 std::string SceneOptions::name() const {
+    if (lesson != 0) return std::filesystem::path(lessons()[std::size_t(lesson) - 1].file).stem().string();
     if (!scene.empty()) return std::filesystem::path(scene).stem().string();
     if (!mesh.empty()) return std::filesystem::path(mesh).stem().string();
     return "default";
 }
 
-std::string assets_dir() { return SOFTBODY_ASSETS_DIR; }
+std::string assets_dir() {
+    static const std::string dir = find_assets();
+    return dir;
+}
 std::string default_scene_path() { return assets_dir() + "/scenes/default.json"; }
+
+std::string lesson_path(std::int64_t number) {
+    if (number < 1 || std::size_t(number) > lessons().size()) {
+        throw UsageError("--lesson: there is no lesson " + std::to_string(number) + " (1 to " + std::to_string(lessons().size()) + ")");
+    }
+    return assets_dir() + "/scenes/" + std::string(lessons()[std::size_t(number) - 1].file);
+}
 
 }  // namespace softbody::app

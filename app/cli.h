@@ -51,11 +51,12 @@ std::int64_t parse_int(std::string_view option, std::string_view text, std::int6
 // The exit codes, for a command's help: 0, 2 and 4 always; 3 where a run can diverge.
 std::string exit_codes_help(bool can_diverge);
 
-// --scene FILE, --mesh FILE and --set KEY=VALUE (or NAME.KEY=VALUE for a named body), applied
+// --scene FILE (or --lesson N), --mesh FILE and --set KEY=VALUE (or NAME.KEY=VALUE for a named body), applied
 // in that order whatever their order on the command line (the scene is the base, --mesh and
 // --set override it).
 struct SceneOptions {
     std::string scene;
+    std::int64_t lesson = 0;  // 0: none
     std::string mesh;
     std::vector<std::string> sets;  // KEY=VALUE each, checked as they are read
 
@@ -67,8 +68,11 @@ struct SceneOptions {
     std::string name() const;
 };
 
-// Folder of the bundled assets (meshes and scenes), fixed at build time.
+// Folder of the bundled assets (meshes and scenes): beside the installed executable, or the
+// source tree's the build was made from.
 std::string assets_dir();
 std::string default_scene_path();
+// Lesson `number`'s scene file (from 1, as `softbody lessons` numbers them); UsageError when there is none.
+std::string lesson_path(std::int64_t number);
 
 }  // namespace softbody::app

@@ -10,8 +10,10 @@
 // It times the pair kernel alone for every tile variant and gives each its fraction of the
 // peak, then searches the largest cloud that still runs in real time. The frame side (streaming
 // positions and normals) is `softbody render --bench`'s, which times the renderer's own code.
-// Last, "rigid bodies at scale": piles of boxes and balls and pyramids of boxes timed over whole
-// runs, beside the same scenes in Bullet when its peer, softbody_peer_bullet, was built.
+// Then "rigid bodies at scale": piles of boxes and balls and pyramids of boxes timed over whole
+// runs, beside the same scenes in Bullet when its peer, softbody_peer_bullet, was built. Last,
+// "busy machine": the same kinds of scenes at 1 and at all threads while another process spins on
+// one core, and how much the second thread costs or saves there.
 //
 // Every measurement runs in a child process of its own, so each row's peak memory
 // (getrusage's ru_maxrss) is that row's alone.
@@ -39,6 +41,7 @@
 #include <tuple>
 #include <vector>
 
+#include "busy_core.h"
 #include "cli.h"
 #include "commands.h"
 #include "physics/error.h"
@@ -753,13 +756,14 @@ void print_scale_row(const ScaleRow& r) {
 }
 
 
-std::vector<std::string> parse_scenes(std::string_view text) {
+// A comma-separated list of scene names, given to `option`.
+std::vector<std::string> parse_scenes(const std::string& option, std::string_view text) {
     std::vector<std::string> scenes;
     std::size_t start = 0;
     while (start <= text.size()) {
         const std::size_t comma = std::min(text.find(',', start), text.size());
         const std::string_view name = text.substr(start, comma - start);
-        if (name.empty()) throw UsageError("--scale-scenes: an empty name in '" + std::string(text) + "'");
+        if (name.empty()) throw UsageError(option + ": an empty name in '" + std::string(text) + "'");
         scenes.emplace_back(name);
         start = comma + 1;
     }
@@ -886,17 +890,171 @@ nlohmann::ordered_json scale_section(const std::vector<std::string>& scenes, dou
     return out;
 }
 
+// =============================================================================================
+// A busy machine: the same kinds of scenes while another program spins on one core
+// =============================================================================================
+// On a machine shared with other programs a thread of the pool may wait for the system to give
+// it a core; a batch that waited for it lost a whole time slice, and a tick has hundreds of
+// batches. Here a child process spins on one core (BusyCore) while each scene runs a fixed number
+// of ticks at 1 thread and at --threads, by turns, `repeats` times, each run in a child of its
+// own; the row gives the median wall clock of the ticks at each count and their ratio, threads
+// over one. Above 1 the second thread costs time; the pool's aim is at most 1.15 on every scene.
+
+struct BusyScene {
+    std::string name;  // a generated name, a bundled scene file's name, or kBallOnPyramid
+    int ticks = 0;     // a run's ticks: a second or so of wall clock on one thread, with the core busy
+};
+
+// A soft ball (ball:3, 642 particles) dropped onto a small pyramid of rigid boxes (pyramid:3): a
+// soft body on rigid bodies with few of either, where most batches are a few microseconds of work.
+const std::string kBallOnPyramid = "ball:3 on pyramid:3";
+
+// One scene of each kind: soft clouds, soft bodies stacked, piles, pyramids, soft on rigid.
+const std::vector<BusyScene> kBusyScenes{
+    {"cloud:2500", 60},   {"soft_stack.json", 500},      {"pile:100", 150},           {"boxes:1000", 50},
+    {"pyramid:10", 40},   {"pile:100+cloud:300", 100},   {kBallOnPyramid, 200},
+};
+
+Scene busy_scene(const std::string& name) {
+    if (name == kBallOnPyramid) {
+        Scene scene = load_scene("pyramid:3+ball:3");
+        scene.soft_bodies.front().position = Vec3{0.0f, 0.0f, 4.2f};  // 0.7 m above the top box (its top at 3 m)
+        return scene;
+    }
+    if (std::filesystem::path(name).extension() == ".json" && !std::filesystem::exists(name)) {
+        return load_scene((std::filesystem::path(assets_dir()) / "scenes" / name).string());
+    }
+    return load_scene(name);
+}
+
+// One run. Plain data: it crosses a pipe from the child process that measured it.
+struct BusyRun {
+    int measured = 0;
+    int diverged = 0;
+    int threads = 1;
+    int ticks = 0;
+    double seconds = 0.0;  // wall clock of the ticks
+    std::uint64_t hash = 0;
+    long peak_kb = 0;
+    char note[240] = {};
+};
+
+BusyRun measure_busy(const std::string& name, int threads, int ticks) {
+    return in_child<BusyRun>([&]() {
+        BusyRun r;
+        World world(busy_scene(name), WorldOptions{threads, false});
+        r.threads = world.threads();
+        const auto start = Clock::now();
+        for (; r.ticks < ticks && world.status() == Status::Ok; ++r.ticks) world.tick();
+        r.seconds = seconds_since(start);
+        r.hash = world.state_hash();
+        if (world.status() != Status::Ok) {
+            r.diverged = 1;
+            std::snprintf(r.note, sizeof r.note, "%s", world.divergence().c_str());
+        }
+        r.measured = 1;
+        return r;
+    });
+}
+
+double median_of(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t h = values.size() / 2;
+    return values.size() % 2 ? values[h] : 0.5 * (values[h - 1] + values[h]);
+}
+
+// The section: every scene's runs with the core busy, each row as it comes. Returns the rows as JSON.
+nlohmann::ordered_json busy_section(const std::vector<BusyScene>& scenes, int threads, int repeats, bool json) {
+    const double load_before = load_average();
+    if (!json) {
+        std::printf("\nbusy machine: another process spins on one core while each scene runs its ticks at 1 and at %d\n"
+                    "threads, by turns, %d time%s; seconds are the wall clock of the ticks, the median of the runs;\n"
+                    "ratio = %d threads / 1 thread (above 1: the threads cost time; the aim is at most 1.15).\n\n",
+                    threads, repeats, repeats > 1 ? "s" : "", threads);
+        std::printf("%-22s %6s %12s %12s %7s  %s\n", "scene", "ticks", "1 thread s", (std::to_string(threads) + " threads s").c_str(),
+                    "ratio", "runs (1 | more)");
+    }
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    std::optional<BusyCore> busy;
+    try {
+        busy.emplace();
+    } catch (const std::exception& e) {
+        if (!json) std::printf("busy machine skipped: %s\n", e.what());
+        return {{"skipped", e.what()}};
+    }
+    {
+        for (const BusyScene& scene : scenes) {
+            std::vector<double> one, many;
+            std::vector<std::uint64_t> hashes;
+            std::string failure;
+            for (int r = 0; r < repeats && failure.empty(); ++r) {
+                for (int t : {1, threads}) {
+                    const BusyRun run = measure_busy(scene.name, t, scene.ticks);
+                    if (!run.measured || run.diverged) {
+                        failure = run.note[0] ? run.note : "failed";
+                        break;
+                    }
+                    (t == 1 ? one : many).push_back(run.seconds);
+                    hashes.push_back(run.hash);
+                }
+            }
+            nlohmann::ordered_json row = {{"scene", scene.name}, {"ticks", scene.ticks}, {"threads", threads}};
+            if (!failure.empty()) {
+                row["status"] = "failed";
+                row["note"] = failure;
+                if (!json) std::printf("%-22s %6d  failed: %s\n", scene.name.c_str(), scene.ticks, failure.c_str());
+                rows.push_back(row);
+                continue;
+            }
+            const double m1 = median_of(one), mn = median_of(many);
+            const bool same = std::all_of(hashes.begin(), hashes.end(), [&](std::uint64_t h) { return h == hashes.front(); });
+            row["status"] = "ok";
+            row["seconds_1_thread"] = m1;
+            row["seconds_threads"] = mn;
+            row["ratio"] = mn / m1;
+            row["runs_1_thread"] = one;
+            row["runs_threads"] = many;
+            row["same_state_hash"] = same;
+            if (!json) {
+                std::string runs;
+                char text[32];
+                for (double v : one) std::snprintf(text, sizeof text, " %.3g", v), runs += text;
+                runs += " |";
+                for (double v : many) std::snprintf(text, sizeof text, " %.3g", v), runs += text;
+                std::printf("%-22s %6d %12.3f %12.3f %7.2f %s%s\n", scene.name.c_str(), scene.ticks, m1, mn, mn / m1, runs.c_str(),
+                            same ? "" : "  (state hashes differ!)");
+            } else {
+                std::cerr << "  busy " << scene.name << ": " << sig3(m1) << " s at 1 thread, " << sig3(mn) << " s at " << threads
+                          << "\n";
+            }
+            std::cout.flush();
+            rows.push_back(row);
+        }
+    }
+    busy.reset();
+    const double load_after = load_average();
+    if (!json) {
+        std::printf("\nload average (1 min, the spinning process included) %.2f before the section, %.2f after, on %d hardware threads\n",
+                    load_before, load_after, hardware_threads());
+    }
+    return {{"threads", threads}, {"repeats", repeats}, {"load_average_before", load_before}, {"load_average_after", load_after},
+            {"rows", rows}};
+}
+
 }  // namespace
 
 int bench_command(int argc, char** argv) {
     CLI::App app("Times the physics alone on the scenes the app opens: the CPU's peak, whole ticks of cloud:N at 1 and\n"
                  "all threads against the reference kernel and Listing 8 transcribed, the pair kernel alone, the bundled\n"
-                 "meshes, pile:100 with and without a cloud, and the largest cloud that runs in real time (tests/benchmarks/README.md).",
+                 "meshes, pile:100 with and without a cloud, the largest cloud that runs in real time, rigid bodies at scale,\n"
+                 "and the same kinds of scenes with another process busy on one core (tests/benchmarks/README.md).",
                  "softbody bench");
     configure(app);
     bool quick = false, json = false, no_meshes = false, no_bodies = false, no_search = false, no_kernels = false;
-    bool no_scale = false, scale_only = false, no_peer = false;
-    std::string sizes_text, scale_text;
+    bool no_scale = false, scale_only = false, no_peer = false, no_busy = false, busy_only = false;
+    std::string sizes_text, scale_text, busy_text;
+    std::int64_t busy_ticks = 0, busy_repeats = 0;  // 0: the defaults
     double scale_seconds = 0.0;  // 0: each scene's default
     double budget = -1.0;
     int threads = hardware_threads();
@@ -926,6 +1084,24 @@ int bench_command(int argc, char** argv) {
                "simulated seconds of each of its runs (default 10, 3 for pyramid:20 and up; --quick 0.4)")
         ->type_name("S");
     app.add_flag("--no-peer", no_peer, "leave the peer out even where it was built");
+    app.add_flag("--no-busy", no_busy,
+                 "skip \"busy machine\": soft clouds, piles, pyramids and soft on rigid at 1 and --threads threads while "
+                 "another process spins on one core, with the ratio of their times");
+    app.add_flag("--busy-only", busy_only, "run only that section");
+    app.add_option("--busy-scenes", busy_text,
+                   "its scenes: generated names, bundled scene files or '" + kBallOnPyramid + "' (default all of " +
+                       [] {
+                           std::string names;
+                           for (const BusyScene& b : kBusyScenes) names += (names.empty() ? "" : ",") + b.name;
+                           return names;
+                       }() +
+                       "; --quick two)")
+        ->type_name("NAME,...");
+    add_whole(app, "--busy-ticks", busy_ticks, 1, 1'000'000,
+              "ticks of each of its runs (default each scene's, about a second on one thread; --quick a tenth)")
+        ->type_name("N");
+    add_whole(app, "--busy-repeats", busy_repeats, 1, 100, "its runs at each thread count, by turns (default 3, --quick 1)")
+        ->type_name("N");
     app.footer(exit_codes_help(false));
     if (!parse(app, argc, argv, 2)) return kOk;
     bool meshes = !no_meshes, bodies = !no_bodies, search = !no_search, kernels = !no_kernels;
@@ -933,17 +1109,33 @@ int bench_command(int argc, char** argv) {
     std::vector<std::size_t> sizes;
     if (!sizes_text.empty()) sizes = parse_sizes(sizes_text);
     std::vector<std::string> scale_scenes;
-    if (!scale_text.empty()) scale_scenes = parse_scenes(scale_text);
+    if (!scale_text.empty()) scale_scenes = parse_scenes("--scale-scenes", scale_text);
     if (sizes.empty()) sizes = quick ? std::vector<std::size_t>{500, 1000, 2500} : std::vector<std::size_t>{500, 1000, 2500, 5000, 10000};
     if (budget < 0.0) budget = quick ? 0.15 : 1.0;
     if (baseline_max < 0) baseline_max = quick ? 1000 : 5000;
     if (reference_max < 0) reference_max = quick ? 1000 : 10000;
     const std::size_t mesh_max = quick ? 3000 : kMaxParticles;
     if (scale_only && !scale) throw UsageError("--scale-only and --no-scale: choose one");
+    if (busy_only && no_busy) throw UsageError("--busy-only and --no-busy: choose one");
+    if (busy_only && scale_only) throw UsageError("--busy-only and --scale-only: choose one");
+    const bool busy = !no_busy && !scale_only, scale_section_on = scale && !busy_only;
+    const bool one_section = scale_only || busy_only;
+    std::vector<BusyScene> busy_scenes;
+    for (const std::string& name : busy_text.empty() ? std::vector<std::string>{} : parse_scenes("--busy-scenes", busy_text)) {
+        const auto known = std::find_if(kBusyScenes.begin(), kBusyScenes.end(), [&](const BusyScene& b) { return b.name == name; });
+        busy_scenes.push_back({name, known != kBusyScenes.end() ? known->ticks : 100});
+        busy_scene(name);  // refused here, in one line, rather than in every child that would build it
+    }
+    if (busy_scenes.empty()) {
+        busy_scenes = kBusyScenes;
+        if (quick) busy_scenes = {kBusyScenes[5], kBusyScenes[6]};  // the two soft bodies on rigid ones
+    }
+    for (BusyScene& b : busy_scenes) b.ticks = busy_ticks > 0 ? int(busy_ticks) : quick ? std::max(5, b.ticks / 10) : b.ticks;
+    if (busy_repeats == 0) busy_repeats = quick ? 1 : 3;
     // --quick: a smoke of the section, two of its scenes for 0.4 s each, unless told otherwise.
     if (scale_scenes.empty()) scale_scenes = quick ? std::vector<std::string>{"boxes:100", "pyramid:10"} : kScaleScenes;
     if (quick && scale_seconds == 0.0) scale_seconds = 0.4;
-    if (scale_only) sizes.clear(), kernels = meshes = bodies = search = false;
+    if (scale_only || busy_only) sizes.clear(), kernels = meshes = bodies = search = false;
     for (const std::string& name : scale_scenes) {
         // Refused here, in one line, rather than in every child that would build it.
         const Scene scene = load_scene(name);
@@ -957,7 +1149,7 @@ int bench_command(int argc, char** argv) {
     const auto bench_start = Clock::now();
     std::ostream& log = json ? std::cerr : std::cout;  // progress goes to stderr with --json
 
-    if (!json && !scale_only) {
+    if (!json && !one_section) {
         std::cout << "softbody bench: physics only, dt " << dt << " s, k " << defaults.stiffness << " N/m, c "
                   << defaults.damping << " kg/s, m " << defaults.particle_mass
                   << " kg, substeps picked for stability (auto_substeps)\n"
@@ -1136,7 +1328,7 @@ int bench_command(int argc, char** argv) {
             ratio_text << line << "\n";
         }
     }
-    if (!json && !scale_only) std::cout << "\nfast kernel against the others (medians from the rows above):\n" << ratio_text.str();
+    if (!json && !one_section) std::cout << "\nfast kernel against the others (medians from the rows above):\n" << ratio_text.str();
 
     // --- The largest cloud that runs in real time (a tick in at most dt), all threads ----------
     nlohmann::ordered_json real_time = nullptr;
@@ -1194,9 +1386,9 @@ int bench_command(int argc, char** argv) {
 
     // --- Memory ---------------------------------------------------------------------------------
     nlohmann::ordered_json memory = nlohmann::ordered_json::array();
-    if (!json && !scale_only) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
+    if (!json && !one_section) std::cout << "\nmemory the pair forces need (MB, 10^6 bytes):\n";
     for (std::size_t n : {std::size_t(10000), std::size_t(20000)}) {
-        if (scale_only) break;
+        if (one_section) break;
         const double mb = 1e6;
         const double kernel = double(PairForceKernel::memory_bytes(n)) / mb;
         const double stored_l0 = double(n) * double(n - 1) / 2.0 * 4.0 / mb;
@@ -1216,11 +1408,19 @@ int bench_command(int argc, char** argv) {
 
     // --- Rigid bodies at scale, beside the peer ---------------------------------------------------
     nlohmann::ordered_json scale_json = nullptr;
-    if (scale) scale_json = scale_section(scale_scenes, scale_seconds, thread_counts, use_peer, json);
+    if (scale_section_on) scale_json = scale_section(scale_scenes, scale_seconds, thread_counts, use_peer, json);
+
+    // --- The same kinds of scenes on a busy machine ------------------------------------------------
+    nlohmann::ordered_json busy_json = nullptr;
+    if (busy) busy_json = busy_section(busy_scenes, threads, int(busy_repeats), json);
 
     const double total = seconds_since(bench_start);
     if (json && scale_only) {
         const nlohmann::ordered_json out = {{"dt", dt}, {"hardware_threads", hardware_threads()}, {"scale", scale_json},
+                                            {"wall_seconds", total}};
+        std::cout << out.dump(2) << std::endl;
+    } else if (json && busy_only) {
+        const nlohmann::ordered_json out = {{"dt", dt}, {"hardware_threads", hardware_threads()}, {"busy", busy_json},
                                             {"wall_seconds", total}};
         std::cout << out.dump(2) << std::endl;
     } else if (json) {
@@ -1249,6 +1449,7 @@ int bench_command(int argc, char** argv) {
             {"peak", peak_json},
             {"memory", memory},
             {"scale", scale_json},
+            {"busy", busy_json},
             {"meshes_skipped", skipped},
             {"wall_seconds", total},
         };

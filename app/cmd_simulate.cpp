@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -15,6 +16,7 @@
 #include "commands.h"
 #include "physics/error.h"
 #include "physics/mesh.h"
+#include "physics/series.h"
 #include "physics/world.h"
 #include "world_json.h"
 
@@ -44,7 +46,7 @@ public:
                 const auto& x = world.soft_body(b).x;
                 const auto& v = world.soft_body(b).v;
                 for (std::size_t i = 0; i < x.size(); ++i, ++number) {
-                    std::fprintf(file_, "%" PRIu64 ",%.9g,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", world.ticks(), world.time(),
+                    std::fprintf(file_, "%" PRIu64 ",%s,%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", world.ticks(), tick_time_text(world.ticks(), world.settings().dt).c_str(),
                                  number, x.x[i], x.y[i], x.z[i], v.x[i], v.y[i], v.z[i]);
                 }
             }
@@ -52,9 +54,9 @@ public:
             for (std::size_t b = 0; b < world.rigid_body_count(); ++b) {
                 const RigidMotion m = world.rigid_motion(b);
                 std::fprintf(file_,
-                             "%" PRIu64 ",%.9g,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,"
+                             "%" PRIu64 ",%s,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,"
                              "%.12g,%.12g,%.12g\n",
-                             world.ticks(), world.time(), world.rigid_body(b).name.c_str(), m.x.x, m.x.y, m.x.z, m.q.w, m.q.x,
+                             world.ticks(), tick_time_text(world.ticks(), world.settings().dt).c_str(), world.rigid_body(b).name.c_str(), m.x.x, m.x.y, m.x.z, m.q.w, m.q.x,
                              m.q.y, m.q.z, m.v.x, m.v.y, m.v.z, m.omega.x, m.omega.y, m.omega.z, m.L.x, m.L.y, m.L.z);
             }
         }
@@ -72,6 +74,34 @@ private:
     std::FILE* file_;
 };
 
+// --series: the run's time series as CSV (physics/series.h), a row every K ticks from tick 0,
+// written as it goes; a failed write is said, not lost quietly.
+class SeriesFile {
+public:
+    SeriesFile(const std::string& path, World& world) : path_(path), series_(world), out_(path, std::ios::binary) {
+        if (!out_) throw InputError(path + ": cannot write the series file");
+        out_ << series_.csv_header();
+        write(world);
+    }
+    void write(World& world) {
+        ledger_.observe(world);  // between two rows nothing from outside changes a simulate run
+        series_.record(world, ledger_);
+        out_ << series_.csv_row(series_.size() - 1);
+        series_.clear();
+        if (!out_) throw InputError(path_ + ": writing the series failed");
+    }
+    void close() {
+        out_.close();
+        if (!out_) throw InputError(path_ + ": writing the series failed");
+    }
+
+private:
+    std::string path_;
+    EnergyLedger ledger_;
+    Series series_;
+    std::ofstream out_;
+};
+
 }  // namespace
 
 int simulate_command(int argc, char** argv) {
@@ -86,7 +116,9 @@ int simulate_command(int argc, char** argv) {
     double seconds = -1.0;
     std::string dump_path, dump_bodies_path;
     std::int64_t dump_every = 1;
-    int threads = hardware_threads();
+    std::string series_path;
+    std::int64_t series_every = 1;
+    int threads = kDefaultThreads;
     add_number(app, "--seconds", seconds, 0.0, 1e7, "simulated seconds to run, in whole ticks of dt (this or --ticks is required)")
         ->type_name("T");
     add_whole(app, "--ticks", ticks, 0, 1'000'000'000, "ticks of dt to run (this or --seconds is required)");
@@ -97,8 +129,11 @@ int simulate_command(int argc, char** argv) {
                    "CSV: tick,time,body,x,y,z,qw..qz,vx..vz,wx..wz,Lx..Lz, from tick 0 (default: none)")
         ->type_name("FILE.csv");
     add_whole(app, "--dump-every", dump_every, 1, 1'000'000'000, "a dump's row every K ticks (default 1)")->type_name("K");
-    add_whole(app, "--threads", threads, 1, 256,
-              "threads (default " + std::to_string(threads) + ": this machine's); any count gives the same bits");
+    app.add_option("--series", series_path,
+                   "CSV, a row a tick from tick 0: time, energies, bodies' centres and velocities, springs' lengths and forces (default: none)")
+        ->type_name("FILE.csv");
+    add_whole(app, "--series-every", series_every, 1, 1'000'000'000, "a series row every K ticks (default 1)")->type_name("K");
+    add_whole(app, "--threads", threads, 1, 256, "threads (default " + std::to_string(threads) + "); any count gives the same bits");
     app.footer(exit_codes_help(true));
     if (!parse(app, argc, argv, 2)) return kOk;
     if ((ticks < 0) == (seconds < 0.0)) throw UsageError("give exactly one of --seconds or --ticks");
@@ -113,6 +148,8 @@ int simulate_command(int argc, char** argv) {
     if (!dump_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_path, Dump::Kind::Particles));
     if (!dump_bodies_path.empty()) dumps.push_back(std::make_unique<Dump>(dump_bodies_path, Dump::Kind::RigidBodies));
     for (auto& dump : dumps) dump->write(world);
+    std::unique_ptr<SeriesFile> series;
+    if (!series_path.empty()) series = std::make_unique<SeriesFile>(series_path, world);
     const auto start = std::chrono::steady_clock::now();
     // What the rigid contacts did to the energy (World::contact_energy), over the run and over
     // its last second.
@@ -128,9 +165,11 @@ int simulate_command(int argc, char** argv) {
         if (world.status() == Status::Ok && world.ticks() % static_cast<std::uint64_t>(dump_every) == 0) {
             for (auto& dump : dumps) dump->write(world);
         }
+        if (series && world.status() == Status::Ok && world.ticks() % static_cast<std::uint64_t>(series_every) == 0) series->write(world);
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (auto& dump : dumps) dump->close();
+    if (series) series->close();
 
     const Energy e = world.energy();
     const Stability s = world.stability();
@@ -149,7 +188,7 @@ int simulate_command(int argc, char** argv) {
         {"particles", particles},
         {"springs", springs},
         {"ticks", world.ticks()},
-        {"sim_time", world.time()},
+        {"sim_time", std::stod(tick_time_text(world.ticks(), world.settings().dt))},  // 1, not 0.99999998
         {"wall_time", wall},
         {"threads", world.threads()},
         {"integrator", to_string(settings.integrator)},

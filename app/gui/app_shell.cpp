@@ -147,7 +147,9 @@ bool AppShell::run_frame() {
             run_script_command(*session, view, command);
         }
     }
-    for (const std::string& file : window->take_dropped_files()) session->load_mesh_file(file);
+    // A file dropped on the window: a scene (a saved preset) opens as one, a mesh goes to the
+    // selected soft body.
+    for (const std::string& file : window->take_dropped_files()) session->open_file(file);
 
     // Physics: whole fixed ticks for the time that passed (fixed frame time when scripted).
     const double now = window->time();

@@ -30,11 +30,25 @@ void Panels::draw(Session& session, View& view, float fps) {
     if (show_help) help();
     if (!show_panels) return;
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float scale = scale_ * ui.text_size;
+    ImGui::GetIO().FontGlobalScale = ui.text_size;
+    // The panel takes 360 px (at 1x) on the left, or nearly the whole width of a narrow screen
+    // (a phone held upright); there it starts folded, so the view is what shows first.
+    panel_width_ = std::min(360.0f * scale, viewport->WorkSize.x - 16.0f * scale_);
+    if (first_frame_ && viewport->WorkSize.x < 600.0f * scale_) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
+    first_frame_ = false;
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + 8 * scale_, viewport->WorkPos.y + 8 * scale_), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(360 * scale_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
-    ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::PushItemWidth(-150 * scale_);
-    ToolContext context{session, view, recorder, scale_, fps};
+    ImGui::SetNextWindowSize(ImVec2(panel_width_, viewport->WorkSize.y - 16 * scale_), ImGuiCond_Always);
+    // Folds by its title bar's arrow (or a double click on it); the keyboard moves through it
+    // (the window's navigation is on).
+    const bool open = ImGui::Begin("softbody", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    folded_ = ImGui::IsWindowCollapsed();
+    if (!open) {
+        ImGui::End();
+        return;
+    }
+    ImGui::PushItemWidth(-std::min(150.0f * scale, 0.42f * panel_width_));
+    ToolContext context{session, view, ui, recorder, scale, fps};
     for (const auto& tool : tools_) {
         if (!tool->shown(session)) continue;
         if (!ImGui::CollapsingHeader(tool->title(), tool->open(session) ? ImGuiTreeNodeFlags_DefaultOpen : 0)) continue;
@@ -70,7 +84,10 @@ void Panels::help() {
 }
 
 void Panels::error_banner(Session& demo, View&) {
-    if (demo.error().empty()) return;
+    if (demo.error().empty()) {
+        notice_banner(demo);
+        return;
+    }
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
     const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
     ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
@@ -88,6 +105,23 @@ void Panels::error_banner(Session& demo, View&) {
             demo.clear_error();
         }
     }
+    ImGui::End();
+    ImGui::PopStyleColor();
+}
+
+// A notice (what an action did) at the top right, until dismissed or replaced.
+void Panels::notice_banner(Session& session) {
+    if (session.notice().empty()) return;
+    const ImGuiViewport* viewport = ImGui::GetMainViewport();
+    const float width = std::min(760 * scale_, viewport->WorkSize.x - 400 * scale_);
+    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - width - 12 * scale_, viewport->WorkPos.y + 12 * scale_));
+    ImGui::SetNextWindowSize(ImVec2(width, 0));
+    ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.08f, 0.30f, 0.20f, 0.94f));
+    ImGui::Begin("##notice", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(session.notice().c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::SmallButton("OK")) session.clear_notice();
     ImGui::End();
     ImGui::PopStyleColor();
 }

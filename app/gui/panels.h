@@ -20,9 +20,11 @@ public:
     // Draws everything for this frame (between the window's begin/end_ui_frame).
     void draw(Session& session, View& view, float fps);
 
-    float width() const { return show_panels ? 376.0f * scale_ : 0.0f; }  // pixels the panel covers
+    // Pixels the panel covers on the left of the view (none while it is hidden or folded).
+    float width() const { return show_panels && !folded_ ? panel_width_ + 16.0f * scale_ : 0.0f; }
     LessonTool* lesson() const;  // the Lesson tool (its menu, its meter, the run's summary)
 
+    UiSettings ui;
     bool show_help = false;
     bool show_panels = true;
     Recorder* recorder = nullptr;  // the Record button's (gui/recorder.h); none: no button
@@ -30,9 +32,13 @@ public:
 private:
     void help();
     void error_banner(Session& session, View& view);
+    void notice_banner(Session& session);
 
-    float scale_;
+    float scale_;  // the screen's content scale
     std::vector<std::unique_ptr<Tool>> tools_;
+    float panel_width_ = 360.0f;
+    bool folded_ = false;
+    bool first_frame_ = true;
 };
 
 }  // namespace softbody::app

@@ -3,6 +3,8 @@
 #include "gui/session.h"
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 
 #include "physics/error.h"
 #include "physics/generated.h"
@@ -10,13 +12,13 @@
 namespace softbody::app {
 
 Session::Session(const Scene& scene) : clock_(scene.settings.dt) {
-    world_ = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
+    world_ = std::make_unique<World>(scene, WorldOptions{kDefaultThreads, false});
     after_load(scene);
 }
 
 bool Session::load(const Scene& scene) {
     try {
-        auto world = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
+        auto world = std::make_unique<World>(scene, WorldOptions{kDefaultThreads, false});
         world_ = std::move(world);
         after_load(scene);
         error_.clear();
@@ -70,6 +72,12 @@ bool Session::load_mesh_file(const std::string& path) {
     return true;
 }
 
+bool Session::open_file(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+    return extension == ".json" ? load_scene_file(path) : load_mesh_file(path);
+}
+
 Scene Session::scene() const {
     Scene scene = lesson_;
     static_cast<WorldDef&>(scene) = world_->def();
@@ -79,6 +87,7 @@ Scene Session::scene() const {
 bool Session::save_preset(const std::string& path, bool overwrite) {
     try {
         save_scene(path, scene(), overwrite ? Overwrite::Yes : Overwrite::No);
+        notice_ = "Saved " + path + " (open it with Presets > Load, or drop it on the window)";
         return true;
     } catch (const std::exception& e) {
         error_ = e.what();

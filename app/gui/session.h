@@ -58,6 +58,8 @@ public:
     bool load(const Scene& scene);
     bool load_scene_file(const std::string& path);
     bool load_mesh_file(const std::string& path);  // the selected soft body takes it
+    // A file dropped or opened: a scene file (.json) loads as a scene, anything else as a mesh.
+    bool open_file(const std::string& path);
     bool save_preset(const std::string& path, bool overwrite);
     void reset();
     // The scene as it stands: what a preset saves (every key and body now, the lesson's words).
@@ -125,6 +127,12 @@ public:
     const std::string& error() const { return error_; }
     void set_error(std::string message) { error_ = std::move(message); }
     void clear_error() { error_.clear(); }
+    // What a user's action did, said once (a preset saved, a link copied); cleared by the user.
+    const std::string& notice() const { return notice_; }
+    void set_notice(std::string message) { notice_ = std::move(message); }
+    void clear_notice() { notice_.clear(); }
+    // The keys changed since the scene was loaded, as `--set` takes them (what a link carries).
+    ChangedKeys changed_keys() const { return softbody::changed_keys(lesson_, world_->def()); }
 
     // The inspector: one particle's forces, equation by equation, or one rigid body's.
     void inspect(const Inspected& what);
@@ -152,7 +160,7 @@ private:
     EnergyRecord energy_;
     std::optional<LastCollision> last_collision_;
     std::optional<Inspected> inspected_;
-    std::string error_, source_;
+    std::string error_, notice_, source_;
     std::size_t selected_body_ = 0;
     int ticks_last_frame_ = 0;
     std::uint64_t loads_ = 0;

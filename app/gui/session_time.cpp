@@ -140,7 +140,7 @@ bool Session::build_compared() {
         for (ComparedWorld& c : compared_) {
             Scene scene = base;
             scene.settings = compared_settings(c.setup, base.settings);
-            c.world = std::make_unique<World>(scene, WorldOptions{hardware_threads(), false});
+            c.world = std::make_unique<World>(scene, WorldOptions{kDefaultThreads, false});
             c.history.start(*c.world);
         }
     } catch (const std::exception& e) {

@@ -13,9 +13,16 @@ class Session;
 class View;
 class Recorder;
 
+// How the panel looks, which the Display tool sets: the text size (1: the screen's own; about 2
+// for a projector at the back of a classroom).
+struct UiSettings {
+    float text_size = 1.0f;
+};
+
 struct ToolContext {
     Session& session;
     View& view;
+    UiSettings& ui;
     Recorder* recorder = nullptr;  // the Record button's (gui/recorder.h); none: no button
     float scale = 1.0f;            // the UI's size against 1x
     float fps = 0.0f;              // frames drawn a second

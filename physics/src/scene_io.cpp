@@ -485,6 +485,35 @@ void set_scene_key(Scene& scene, std::string_view key, std::string_view text) {
     for (const KeyTarget& t : targets) set_key(scene, t, value);
 }
 
+ChangedKeys changed_keys(const Scene& loaded, const WorldDef& now) {
+    ChangedKeys out;
+    const auto compare = [&](const auto& before, const auto& after, KeyOwner owner, const std::string& prefix) {
+        for (const KeyInfo* info : keys_of(owner)) {
+            if (info->alias) continue;
+            const KeyValue a = get_key(before, *info), b = get_key(after, *info);
+            if (!(a == b)) out.keys.emplace_back(prefix + std::string(info->name), key_text(*info, b));
+        }
+    };
+    compare(loaded.settings, now.settings, KeyOwner::World, "");
+    const auto match = [&](const auto& was, const auto& is, KeyOwner owner) {
+        for (const auto& thing : is) {
+            const auto it = std::find_if(was.begin(), was.end(), [&](const auto& t) { return t.name == thing.name; });
+            if (it == was.end() || thing.name.empty()) {
+                ++out.added;
+                continue;
+            }
+            compare(*it, thing, owner, thing.name + ".");
+        }
+        for (const auto& thing : was) {
+            if (std::none_of(is.begin(), is.end(), [&](const auto& t) { return t.name == thing.name; })) ++out.removed;
+        }
+    };
+    match(loaded.soft_bodies, now.soft_bodies, KeyOwner::SoftBody);
+    match(loaded.rigid_bodies, now.rigid_bodies, KeyOwner::RigidBody);
+    match(loaded.springs, now.springs, KeyOwner::Spring);
+    return out;
+}
+
 std::string scene_to_json(const Scene& scene) {
     // Each key a definition holds that is set (unset optional ones are left out), by the table.
     const auto keys = [](const auto& def, KeyOwner owner) {

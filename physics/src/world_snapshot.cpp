@@ -106,6 +106,7 @@ void World::restore(const WorldSnapshot& s) {
     energy_baseline_ = s.energy_baseline;
     energy_scale_ = s.energy_scale;
     energy_baseline_stale_ = s.energy_baseline_stale;
+    ++outside_changes_;  // the world jumped to another moment
     sleep_ = s.sleep;
     for (std::size_t b = 0; b < rigid_.size(); ++b) asleep_[b] = sleep_.island[b] != kAwake ? 1 : 0;
 }

@@ -152,7 +152,7 @@ void World::structure_changed() {
     soft_touching_ = false;
     solver_particles_.clear();
     solver_particle_v_.clear();
-    energy_baseline_stale_ = true;
+    changed_from_outside();
     update_substeps();
 }
 
@@ -192,7 +192,7 @@ SpringId World::create_spring(const SpringDef& def) {
     const SpringId id = spring_ids_.add();
     wake_all();
     update_substeps();
-    energy_baseline_stale_ = true;
+    changed_from_outside();
     return id;
 }
 
@@ -203,7 +203,7 @@ void World::destroy(SpringId id) {
     spring_ids_.remove(id);
     wake_all();
     update_substeps();
-    energy_baseline_stale_ = true;
+    changed_from_outside();
 }
 
 void World::destroy(SoftBodyId id) {
@@ -301,7 +301,7 @@ void World::set_settings(const WorldSettings& settings) {
         for (SoftBody& body : soft_) body.verlet_h = 0.0f;
     }
     if (!(settings == settings_)) {
-        energy_baseline_stale_ = true;
+        changed_from_outside();
         wake_all();  // a key changed: whatever it does, nothing stays asleep through it
     }
     settings_ = settings;
@@ -314,7 +314,7 @@ void World::set_def(SoftBodyId id, const SoftBodyDef& def) {
     validate(def);
     check_pins(def, body.mesh);
     if (!(def == body.def)) {
-        energy_baseline_stale_ = true;
+        changed_from_outside();
         wake_all();
     }
     const std::shared_ptr<const Mesh> geometry = def.mesh == body.def.mesh && !def.geometry ? body.def.geometry : def.geometry;
@@ -346,7 +346,7 @@ void World::set_def(SpringId id, const SpringDef& def) {
     if (!def.rest_length) link.l0 = links_[s].l0;
     links_[s] = link;
     spring_defs_[s] = def;
-    energy_baseline_stale_ = true;
+    changed_from_outside();
     wake_all();
     update_substeps();
 }
@@ -476,7 +476,7 @@ void World::build() {
     status_ = Status::Ok;
     divergence_.clear();
     grab_.reset();
-    energy_baseline_stale_ = true;
+    changed_from_outside();
     update_substeps();
 }
 
@@ -549,7 +549,7 @@ void World::set_threads(int threads) {
 
 void World::set_grab(std::optional<Grab> grab) {
     grab_ = grab;
-    energy_baseline_stale_ = true;  // the grab does work on the body
+    changed_from_outside();  // the grab does work on the body
     if (grab_ && grab_->rigid) wake_rigid(grab_->body);
 }
 
@@ -562,7 +562,7 @@ void World::set_pinned(std::size_t b, std::uint32_t particle, bool pinned) {
     if (pinned) body.def.pinned.push_back(vertex_of_particle(body, particle));
     body.built.pinned = body.def.pinned;  // in force now: nothing waits for a reset
     softbody::set_pinned(body, particle, pinned);
-    energy_baseline_stale_ = true;
+    changed_from_outside();
 }
 
 void World::update_substeps() {

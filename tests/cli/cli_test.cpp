@@ -636,6 +636,58 @@ TEST(Bench, ScaleJsonGivesSoundnessFiguresOfAShortDrop) {
     EXPECT_EQ(rows[0].at("kinetic_J").get<double>(), rows[1].at("kinetic_J").get<double>());
 }
 
+// --- softbody bench: a busy machine ----------------------------------------------------------
+// The section spins a process on one core for the length of its runs (a few ticks here). Its
+// times are never checked: only that it ran each scene at both thread counts, with the same
+// answer at each.
+
+TEST(Bench, BusyOnlyRunsEachSceneAtOneAndTwoThreadsWithTheSameState) {
+    const Result r = run({"bench", "--busy-only", "--busy-scenes", "pile:100+cloud:300,ball:3 on pyramid:3", "--busy-ticks", "3",
+                          "--busy-repeats", "2", "--threads", "2", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const json j = json::parse(r.out);
+    EXPECT_FALSE(j.contains("rows")) << r.out;   // nothing of the clouds
+    EXPECT_FALSE(j.contains("scale")) << r.out;  // nor of the rigid bodies at scale
+    const json& busy = j.at("busy");
+    EXPECT_EQ(busy.at("threads"), 2);
+    EXPECT_EQ(busy.at("repeats"), 2);
+    const json& rows = busy.at("rows");
+    ASSERT_EQ(rows.size(), 2u) << r.out;
+    EXPECT_EQ(rows[0].at("scene"), "pile:100+cloud:300");
+    EXPECT_EQ(rows[1].at("scene"), "ball:3 on pyramid:3");
+    for (const json& row : rows) {
+        EXPECT_EQ(row.at("status"), "ok") << row.dump();
+        EXPECT_EQ(row.at("ticks"), 3);
+        EXPECT_EQ(row.at("runs_1_thread").size(), 2u);
+        EXPECT_EQ(row.at("runs_threads").size(), 2u);
+        EXPECT_GT(row.at("seconds_1_thread").get<double>(), 0.0);
+        EXPECT_GT(row.at("seconds_threads").get<double>(), 0.0);
+        EXPECT_DOUBLE_EQ(row.at("ratio").get<double>(),
+                         row.at("seconds_threads").get<double>() / row.at("seconds_1_thread").get<double>());
+        EXPECT_TRUE(row.at("same_state_hash").get<bool>()) << row.dump();
+    }
+}
+
+TEST(Bench, BusyOnlyPrintsTheSectionAlone) {
+    const Result r = run({"bench", "--busy-only", "--busy-scenes", "soft_stack.json", "--busy-ticks", "2", "--busy-repeats", "1",
+                          "--threads", "2"});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_NE(r.out.find("busy machine: another process spins on one core"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("soft_stack.json"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("ratio"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("rigid bodies at scale"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("pair kernel alone"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("memory the pair forces need"), std::string::npos) << r.out;
+}
+
+TEST(BadInput, BenchBusyOptionsAreRefusedInOneLine) {
+    expect_refused({"bench", "--busy-only", "--no-busy"}, {"--busy-only", "--no-busy"});
+    expect_refused({"bench", "--busy-only", "--scale-only"}, {"--busy-only", "--scale-only"});
+    expect_refused({"bench", "--busy-only", "--busy-scenes", "pile:lots"}, {"pile:lots"});
+    expect_refused({"bench", "--busy-only", "--busy-scenes", "pile:100,"}, {"empty"});
+    expect_refused({"bench", "--busy-ticks", "0"}, {"--busy-ticks"});
+}
+
 TEST(BadInput, BenchScaleOptionsAreRefusedInOneLine) {
     expect_refused({"bench", "--scale-only", "--scale-scenes", "cloud:100"}, {"--scale-scenes", "cloud:100", "no rigid bodies"});
     expect_refused({"bench", "--scale-only", "--scale-scenes", "boxes:100,"}, {"--scale-scenes", "empty"});

@@ -138,9 +138,9 @@ def drop_and_record(browser, base, downloads):
     press(page, "m")
     line = page.wait_for_console(lambda text: text.startswith("{"), timeout=300)
     web = json.loads(line)
-    if not web.get("mesh", "").endswith("/cube.obj") or web.get("particles") != 8:
-        raise Failure(f"drop_record: the dropped cube did not become the body (mesh '{web.get('mesh')}', "
-                      f"{web.get('particles')} particles)")
+    bodies = web.get("soft_bodies") or [{}]
+    if len(bodies) != 1 or not bodies[0].get("mesh", "").endswith("/cube.obj") or bodies[0].get("particles") != 8:
+        raise Failure(f"drop_record: the dropped cube did not become the soft body: {json.dumps(bodies)}")
     recording = web.get("recording") or {}
     if not recording.get("video") or recording.get("frames", 0) < 1:
         raise Failure(f"drop_record: the M key recorded nothing: {json.dumps(recording)}")

@@ -6,7 +6,8 @@
 // same bits as in the native build. from_chars' stricter rules are kept where they differ:
 // no leading space or '+', no hexadecimal in the general format, and a number beyond the
 // type's range is result_out_of_range with the value left alone. to_chars writes the shortest
-// %g text that reads back as the same number (only messages print numbers that way).
+// text that reads back as the same number, in to_chars' own form, so that the page prints a
+// key's value, a time or a CSV cell exactly as the desktop does.
 #pragma once
 
 #include <cerrno>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <system_error>
 
@@ -48,12 +50,35 @@ std::from_chars_result parse_floating(const char* first, const char* last, T& va
     return result;
 }
 
-inline std::to_chars_result shortest_text(char* first, char* last, double value) {
-    char text[40];
+// The fewest significant digits that read back as the same number, written as std::to_chars
+// writes it: plain decimals unless the exponent form is shorter ("100", "0.02", "1e-07").
+template <class T>
+std::to_chars_result shortest_text(char* first, char* last, T value) {
+    const auto reads_back = [&](const char* text) {
+        return sizeof(T) == sizeof(float) ? T(std::strtof(text, nullptr)) == value : T(std::strtod(text, nullptr)) == value;
+    };
+    char text[64];
     int length = 0;
-    for (int digits = 1; digits <= 17; ++digits) {
-        length = std::snprintf(text, sizeof text, "%.*g", digits, value);
-        if (std::strtod(text, nullptr) == value || std::isnan(value)) break;
+    if (!std::isfinite(value)) {
+        length = std::snprintf(text, sizeof text, "%s", std::isnan(value) ? (std::signbit(value) ? "-nan" : "nan")
+                                                                             : (value < 0 ? "-inf" : "inf"));
+    } else {
+        const int most = sizeof(T) == sizeof(float) ? 9 : 17;
+        int digits = 1;
+        char exponent_form[64];
+        for (; digits <= most; ++digits) {
+            std::snprintf(exponent_form, sizeof exponent_form, "%.*e", digits - 1, double(value));
+            if (reads_back(exponent_form)) break;
+        }
+        // The same digits without an exponent: as many decimals as the last digit needs.
+        const int exponent = value == 0 ? 0 : std::atoi(std::strchr(exponent_form, 'e') + 1);
+        const int decimals = digits - 1 - exponent > 0 ? digits - 1 - exponent : 0;
+        char plain[400];
+        const int plain_length = std::snprintf(plain, sizeof plain, "%.*f", decimals, double(value));
+        // %e keeps trailing zeros of the mantissa ("1.0e+02" cannot happen: digits is the fewest)
+        const int exponent_length = int(std::strlen(exponent_form));
+        const bool use_plain = plain_length > 0 && plain_length <= exponent_length && plain_length < int(sizeof text);
+        length = std::snprintf(text, sizeof text, "%s", use_plain ? plain : exponent_form);
     }
     if (length < 0 || length > last - first) return {last, std::errc::value_too_large};
     for (int i = 0; i < length; ++i) first[i] = text[i];
@@ -71,6 +96,9 @@ inline from_chars_result from_chars(const char* first, const char* last, float& 
     return softbody::web_compat::parse_floating(first, last, value);
 }
 inline to_chars_result to_chars(char* first, char* last, double value) {
+    return softbody::web_compat::shortest_text(first, last, value);
+}
+inline to_chars_result to_chars(char* first, char* last, float value) {
     return softbody::web_compat::shortest_text(first, last, value);
 }
 

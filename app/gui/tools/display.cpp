@@ -23,6 +23,12 @@ private:
     void display_body(ToolContext& c) {
         auto& o = c.view.overlays;
         auto& a = c.view.appearance;
+        // The text's size, for a projector at the back of a room (about 2x) or a small screen.
+        ImGui::SliderFloat("text size", &c.ui.text_size, 0.75f, 3.0f, "%.2fx");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("The size of the panel's text and widgets. Ctrl-click to type a value.");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Projector")) c.ui.text_size = c.ui.text_size >= 1.9f ? 1.0f : 2.0f;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Text twice the size, readable from the back of a classroom (again: back to 1x).");
         ImGui::Checkbox("particles (P)", &o.particles);
         ImGui::SameLine(180 * c.scale);
         ImGui::Checkbox("springs (S)", &o.springs);

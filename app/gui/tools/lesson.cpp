@@ -13,7 +13,6 @@ namespace softbody::app {
 
 namespace {
 
-std::string lesson_path(std::size_t number) { return assets_dir() + "/scenes/" + std::string(lessons()[number - 1].file); }
 
 // A value with its unit, or the outcome in words when the closed form predicts one.
 std::string value_text(double value, const std::string& unit) {
@@ -30,14 +29,14 @@ bool open_lesson(Session& session, std::size_t number) {
         session.set_error("there is no lesson " + std::to_string(number) + " (1 to " + std::to_string(lessons().size()) + ")");
         return false;
     }
-    return session.load_scene_file(lesson_path(number));
+    return session.load_scene_file(lesson_path(std::int64_t(number)));
 }
 
 LessonTool::LessonTool() {
     for (std::size_t n = 1; n <= lessons().size(); ++n) {
         std::string title(lessons()[n - 1].file);
         try {
-            title = load_scene(lesson_path(n)).title;
+            title = load_scene(lesson_path(std::int64_t(n))).title;
         } catch (const std::exception&) {
             // Shown by its file name; opening it shows why it does not load.
         }

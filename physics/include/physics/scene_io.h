@@ -61,6 +61,17 @@ Scene parse_scene(const std::string& text, const std::string& origin);
 // in a scene without soft bodies makes one, named "body" (the old flat form's). Throws InputError.
 void set_scene_key(Scene& scene, std::string_view key, std::string_view text);
 
+// The keys that differ between a scene as loaded and a world as it is now, as `--set` takes
+// them ("dt", "jelly.stiffness", "spring.rest_length"), each with its text: applied to the
+// scene, they give the world's keys. Only things present in both by name count; `added` says
+// how many bodies or springs the world has that the scene lacks, or lacks that it has (what
+// keys cannot say).
+struct ChangedKeys {
+    std::vector<std::pair<std::string, std::string>> keys;
+    std::size_t added = 0, removed = 0;
+};
+ChangedKeys changed_keys(const Scene& loaded, const WorldDef& now);
+
 std::string scene_to_json(const Scene& scene);
 
 enum class Overwrite { No, Yes };

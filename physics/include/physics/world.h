@@ -286,6 +286,10 @@ public:
     // restitution's share of it (contact_solver.h says how it is measured).
     const ContactEnergy& contact_energy() const { return contact_energy_; }
     std::uint64_t state_hash() const;  // FNV-1a over the bits of every x and v, and every rigid state
+    // How many times something from outside changed the world's energy (a key, a grab, a pin,
+    // a body made, unmade or restored, a reset): between two ticks with the same count, only the
+    // world's own forces and contacts changed it (energy_ledger.h).
+    std::uint64_t outside_changes() const { return outside_changes_; }
 
 private:
     void build();
@@ -360,6 +364,11 @@ private:
     double energy_baseline_ = 0.0;  // total energy then, J
     double energy_scale_ = 0.0;     // energy in play then: kinetic + elastic + weight x height, J
     bool energy_baseline_stale_ = true;
+    std::uint64_t outside_changes_ = 0;
+    void changed_from_outside() {
+        energy_baseline_stale_ = true;
+        ++outside_changes_;
+    }
 };
 
 }  // namespace softbody
