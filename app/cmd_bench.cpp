@@ -38,6 +38,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "busy_core.h"
@@ -333,6 +334,25 @@ Scene two_cubes(bool touching) {
         body.damping = 0.005f;
         body.particle_mass = 0.05f;
         body.position = touching ? Vec3{0.0f, 0.0f, 0.3f + 0.61f * float(k)} : Vec3{-0.5f + 1.0f * float(k), 0.0f, 0.3f};
+        scene.soft_bodies.push_back(body);
+    }
+    return scene;
+}
+
+// A soft ball (ball:2: 162 particles, 0.7 m across, k 120) dropped 1.5 m onto pyramid:3 (14
+// boxes), and each of the two alone (the ball on the ground): what a soft body resting on rigid
+// bodies costs against the two apart, timed after 2 s (landed, at rest).
+Scene ball_on_pyramid(bool ball, bool pyramid) {
+    Scene scene = pyramid ? load_scene("pyramid:3") : Scene{};
+    if (ball) {
+        SoftBodyDef body;
+        body.name = "ball";
+        body.mesh = "ball:2";
+        body.scale = 0.7f;
+        body.particle_mass = 0.05f;
+        body.stiffness = 120.0f;
+        body.damping = 0.5f;
+        body.position = Vec3{0.0f, 0.0f, (pyramid ? 3.0f : 0.0f) + 1.5f + 0.35f};
         scene.soft_bodies.push_back(body);
     }
     return scene;
@@ -1255,7 +1275,7 @@ int bench_command(int argc, char** argv) {
     add_whole(app, "--reference-max", reference_max, 0, 20000, "largest N for the reference kernel (default 10000, --quick 1000)");
     app.add_flag("--no-kernels", no_kernels, "skip the peak probe and the pair kernel alone (every tile variant)");
     app.add_flag("--no-meshes", no_meshes, "skip the bundled meshes (scene files with a soft body and no rigid bodies)");
-    app.add_flag("--no-bodies", no_bodies, "skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000)");
+    app.add_flag("--no-bodies", no_bodies, "skip the rigid and mixed scenes (pile:100, pile:100+cloud:1000, ball on pyramid:3)");
     app.add_flag("--no-search", no_search, "skip the search for the largest cloud that runs in real time");
     app.add_flag("--no-scale", no_scale,
                  "skip \"rigid bodies at scale\": piles and pyramids timed over whole runs, beside Bullet where its peer "
@@ -1409,6 +1429,14 @@ int bench_command(int argc, char** argv) {
         for (const char* name : {"pile:100", "pile:100+cloud:1000"}) {
             const std::size_t n = std::string_view(name).find("cloud") != std::string_view::npos ? 1000 : 0;
             for (int t : thread_counts) add({name, n, fast_name, measure(Kernel::Fast, name, t, budget, 50)});
+        }
+        // A soft body resting on rigid bodies, against the two apart.
+        for (const auto& [name, ball, pyramid] : {std::tuple{"ball", true, false}, std::tuple{"pyramid:3", false, true},
+                                                  std::tuple{"ball on pyramid:3", true, true}}) {
+            const std::size_t n = ball ? 162 : 0;
+            for (int t : thread_counts) {
+                add({name, n, fast_name, measure_scene(Kernel::Fast, [&] { return ball_on_pyramid(ball, pyramid); }, t, budget, 100)});
+            }
         }
         // Soft contacts: two 2,906-particle cubes, one on the other, against the two apart.
         for (bool touching : {false, true}) {

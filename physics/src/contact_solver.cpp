@@ -155,6 +155,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (b < 0) return 0;
         const RigidBody& body = world.bodies[std::size_t(b)];
         if (body.fixed) return 0;
+        if (!world.asleep.empty() && world.asleep[std::size_t(b)]) return 0;  // asleep: as still as a fixed body
         std::int32_t& at = rigid_index_[std::size_t(b)];
         if (at == 0) {
             Body s;
@@ -448,9 +449,10 @@ void ContactSolver::load(const ContactWorld& world) {
             s.v_free = {p.vx[s.index], p.vy[s.index], p.vz[s.index]};
             s.v_start = Vec3d(v0[s.index]);
             const Vec3d x{p.x[s.index], p.y[s.index], p.z[s.index]};
-            s.x = x - s.v_free * h_;  // where the substep began
+            s.x = {p.x0[s.index], p.y0[s.index], p.z0[s.index]};  // where the substep began
             s.dp = s.x - s.x0;
             s.dp_free = x - s.x0;
+            s.chord = (x - s.x) / h_ - s.v_free;
             s.w_free = s.w_start = {};
             s.turn = s.turn_free = Mat3::identity();
         }
@@ -831,6 +833,32 @@ void ContactSolver::substep(const ContactWorld& world) {
     separations();
     for (Point& p : points_) p.s_moved = p.s;
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
+    // Under RK4 and explicit Euler, a particle its contact pushed leaves with the velocity it
+    // moved with along the normal (its chord), not with what its integrator's end velocity still
+    // holds beyond that: a step of its springs pressing it into the surface (v_end - chord is
+    // a h / 2 under RK4), which the surface cancels while it holds the particle: an impulse,
+    // equal and opposite on the other side. Kept, a particle that reached the surface in this
+    // substep (a speculative point, left 0.07 mm off it and so not relaxed) went on into it at
+    // 12 m/s with nothing moving it so, and the next substep took that for an impact and bounced
+    // it back out at e times it (a bounce's velocity carries the same step): a soft ball landing
+    // on a pyramid of boxes gained 2.7% of the energy in play under RK4, 5.9% with softer
+    // dampers. (Under Verlet and symplectic Euler the two are one.)
+    if (settings_.particle_chord) {
+        for (const Manifold& m : manifolds_) {
+            Body &A = bodies_[m.a], &B = bodies_[m.b];
+            if (A.kind != Body::Kind::Particle) continue;
+            const Point& p = points_[m.first];
+            const double lag = dot(A.chord, m.n);
+            const bool bounced = p.bounce > 0.0, held = p.s_moved > kSpeculative && p.normal_impulse > 0.0 && lag > 0.0;
+            if (!bounced && !held) continue;
+            const double j = lag / A.inv_mass;  // Eq. 37 on both sides
+            A.v += m.n * lag;
+            if (m.b != 0) {
+                B.v -= m.n * (j * B.inv_mass);
+                B.w -= B.inv_I * (p.c_b * j);
+            }
+        }
+    }
 
     // The energy of this substep's contacts, island by island: what restitution may give back.
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
@@ -850,7 +878,11 @@ void ContactSolver::substep(const ContactWorld& world) {
             Point& p = points_[k];
             if (p.s_start <= settings_.touching || p.s_moved > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
-            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
+            // A particle's free velocity as it moved (its chord), not its integrator's end
+            // velocity: under RK4 that holds a step of its springs pressing it on, and the speed
+            // it met the surface with came out too high, and its bounce.
+            const double chord = settings_.particle_chord && A.kind == Body::Kind::Particle ? dot(A.chord, m.n) : 0.0;
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b) + chord;
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
             const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
             const bool closing = vn_start < 0.0 || a_n < 0.0;

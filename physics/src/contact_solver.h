@@ -79,6 +79,7 @@ struct ContactSettings {
     double touching = 5e-4;       // m: a point this close at a substep's start touches (it may bounce there)
     int relax_passes = 3;         // over every manifold after the positions moved
     bool exact_turn = false;      // symplectic Euler, Verlet: positions' turn by free_turn (see substep)
+    bool particle_chord = false;  // RK4, explicit Euler: a particle's step is not h times its end velocity (see substep)
     int restitution_passes = 4;   // over the manifolds that bounce in a substep
 };
 
@@ -90,6 +91,9 @@ struct SolverParticles {
     float* verlet_x = nullptr;  // Verlet's step x_n - x_{n-1}, kept equal to v h where contacts
     float* verlet_y = nullptr;  // act (null when the integrator is not Verlet)
     float* verlet_z = nullptr;
+    const float* x0 = nullptr;  // where the substep began (the integrator's positions moved on
+    const float* y0 = nullptr;  // from there, not always by h times the velocity it left:
+    const float* z0 = nullptr;  // RK4 by h/6 of its four stages' velocities, explicit Euler by h v_0)
 };
 
 // What the solver needs of the world: the rigid bodies and their flat state now, as the tick
@@ -102,6 +106,7 @@ struct ContactWorld {
     std::span<SolverParticles> particles;
     std::span<const Vec3Array* const> particle_step_start_v;  // each soft body's v as the substep began
     ThreadPool* pool = nullptr;           // the world's threads (none: this one)
+    std::span<const std::uint8_t> asleep; // per rigid body: 1 while it sleeps (static to the particles resting on it: sleep.h)
 };
 
 // A soft constraint: a spring of `hertz` with damping ratio `zeta`,
@@ -142,6 +147,7 @@ struct SolverBody {
     Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
     Mat3 turn;                 // the turn of its anchors over the same (none for a round body)
     Vec3d dp_free;             // the same to the free step's end
+    Vec3d chord;               // a particle's step over h (its chord velocity) less its end velocity
     Mat3 turn_free;
 };
 

@@ -20,11 +20,23 @@
 namespace softbody {
 
 // Adds friction to body.force, whose entries must hold everything else by now (F_applied).
-// With `record`, remembers each particle in contact (body.contacts) for resolve_ground_contacts.
+// With `record`, remembers each particle in contact (body.contacts) for resolve_ground_contacts;
+// without (RK4's stages 1 to 3), acts on those particles as that record says.
 void apply_ground_friction(SoftBody& body, const ParticleState& s, const WorldSettings& world, bool record);
 
+// RK4's stage state (body.x_tmp, v_stage) held on the ground for the particles that touched it,
+// pressed in, as the step began (body.contacts): not below it, not moving into it. The ground
+// holds such a particle through the whole step; a stage that took it below would feel its
+// springs push it back out instead of the ground, and no friction (F_n > 0 there), so the
+// stages' forces disagreed with one another and the velocity they summed to with the way the
+// particle went: a particle lying still under a stack reported 0.27 m/s along the ground.
+void hold_stage_on_ground(SoftBody& body, const WorldSettings& world);
+
 // After a step of h: x and v are set together, and Verlet's step with them, so position and
-// velocity stay consistent (x_n - x_{n-1} = v h).
+// velocity stay consistent (x_n - x_{n-1} = v h): v is the velocity the next positions follow.
+// A particle below the ground, or on it moving into it, is put on it; it bounces at e times the
+// speed it met the ground with (from body.x_step_start and v_step_start, where the step began),
+// else its normal velocity is zero.
 void resolve_ground_contacts(SoftBody& body, const WorldSettings& world, float h);
 
 // How far a rigid body's points can move in a step (or tick) of h, from where it was at the start:

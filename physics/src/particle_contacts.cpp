@@ -71,4 +71,28 @@ void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<
     }
 }
 
+void hold_stage_off_rigid(std::span<SoftBody> soft, std::span<const RigidContact> contacts, std::span<const RigidBody> bodies,
+                          std::span<const double> found, std::span<const double> stage) {
+    for (const RigidContact& c : contacts) {
+        if (c.soft < 0 || c.b < 0) continue;
+        SoftBody& body = soft[std::size_t(c.soft)];
+        const std::uint32_t i = c.a;
+        if (body.inv_mass[i] == 0.0f) continue;
+        const RigidBody& rigid = bodies[std::size_t(c.b)];
+        const RigidMotion m0 = rigid_motion(rigid, &found[std::size_t(c.b) * rigid::kStateSize]);
+        const RigidMotion m = rigid_motion(rigid, &stage[std::size_t(c.b) * rigid::kStateSize]);
+        // The contact's plane, turned and moved with the body (q made unit: rigid_motion's R is
+        // Listing 9's, from q as it is).
+        const Mat3 turn = m.q.normalized().to_matrix() * m0.q.normalized().to_matrix().transposed();
+        const Vec3d n = turn * c.normal, p = m.x + turn * (c.point - m0.x);
+        const Vec3d x(body.x_tmp[i]);
+        const double d = dot(x - p, n);
+        if (!(d < 0.0)) continue;
+        body.x_tmp.set(i, to_float(x - n * d));
+        const Vec3d v(body.v_stage[i]);
+        const double v_n = dot(v - (m.v + cross(m.omega, p - m.x)), n);
+        if (v_n < 0.0) body.v_stage.set(i, to_float(v - n * v_n));
+    }
+}
+
 }  // namespace softbody

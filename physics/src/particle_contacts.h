@@ -28,4 +28,15 @@ namespace softbody {
 void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                              std::span<const double> start, const WorldSettings& world, double h, std::vector<RigidContact>& out);
 
+// RK4's stage state of every soft body (x_tmp, v_stage) kept out of the rigid bodies its
+// particles have contacts with: a particle the stage takes inside a body's surface (its plane at
+// the contact, carried with the body from where the contacts were found, `found`, to its stage
+// state, `stage`) is put back on it, and its velocity into the body removed. The contacts act
+// after the step (contact_solver.h), but the stages' spring forces are found at these states: let
+// through the surface, a ball landing on a box was squeezed in its stages far more than the
+// contacts then let it be, and the springs' answer to that came back as speed (as for the
+// ground: ground_contact.h).
+void hold_stage_off_rigid(std::span<SoftBody> soft, std::span<const RigidContact> contacts, std::span<const RigidBody> bodies,
+                          std::span<const double> found, std::span<const double> stage);
+
 }  // namespace softbody

@@ -58,6 +58,20 @@ void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidCo
     sleep_.contacts.erase(awake, sleep_.contacts.end());
 }
 
+namespace {
+
+// Whether the particle of a particle's contact comes at its rigid body: into its surface as fast
+// as a body's point that is not at rest (kSleepSpeed). A soft body never sleeps, but one resting
+// on rigid bodies neither keeps them awake nor wakes them: its particles lie on them as on fixed
+// bodies while they sleep (the solver takes a sleeping body as static: contact_solver.h), and
+// only one coming in (a landing, a push) wakes them. A particle merely rocking or sliding on the
+// surface does not: a soft ball resting on a box rocks for seconds at a few cm/s.
+bool particle_coming(const std::vector<SoftBody>& soft, const RigidContact& c) {
+    return -dot(Vec3d(soft[std::size_t(c.soft)].v[c.a]), c.normal) >= kSleepSpeed;
+}
+
+}  // namespace
+
 void World::wake_rigid(std::size_t i) {
     if (i < rigid_.size() && asleep_[i]) wake_islands({sleep_.island[i]}, contacts_);
 }
@@ -71,7 +85,7 @@ void World::wake_all() {
     wake_islands(std::move(islands), contacts_);
 }
 
-// After contacts are found: a sleeping body in one of them met an awake body or a particle
+// After contacts are found: a sleeping body in one of them met an awake body or a particle coming at it
 // (contacts between two sleeping bodies, or a sleeping body and a fixed one or the ground, are
 // never made), so its island wakes. The woken islands' contacts go to the last tick's list, which
 // the solver warm-starts from. True when any woke: their contacts are to be found now.
@@ -80,7 +94,7 @@ bool World::wake_touched_islands() {
     std::vector<std::uint32_t> islands;
     for (const RigidContact& c : contacts_) {
         if (c.soft < 0 && asleep_[c.a]) islands.push_back(sleep_.island[c.a]);
-        if (c.b >= 0 && asleep_[std::size_t(c.b)]) islands.push_back(sleep_.island[std::size_t(c.b)]);
+        if (c.b >= 0 && asleep_[std::size_t(c.b)] && (c.soft < 0 || particle_coming(soft_, c))) islands.push_back(sleep_.island[std::size_t(c.b)]);
     }
     if (islands.empty()) return false;
     wake_islands(std::move(islands), previous_contacts_);
@@ -125,7 +139,7 @@ void World::update_sleep() {
     const auto dynamic = [&](std::int64_t b) { return b >= 0 && !rigid_[std::size_t(b)].fixed; };
     for (const RigidContact& c : contacts_) {
         if (c.soft >= 0) {
-            if (c.b >= 0) held[std::size_t(c.b)] = 1;  // a particle on it
+            if (c.b >= 0 && particle_coming(soft_, c)) held[std::size_t(c.b)] = 1;  // a particle coming at it
         } else if (dynamic(c.b)) {
             islands.unite(c.a, std::uint32_t(c.b));
         } else {

@@ -16,15 +16,17 @@
 //   - it leans on something that does not move: a contact with the ground or a fixed body, or a
 //     spring to a fixed point (a body drifting slowly through empty space is not at rest, it
 //     is in motion that nothing will stop: it never sleeps),
-//   - nothing that never sleeps holds it: no soft body's particle or triangle within reach, no
-//     spring to a soft body, no grab.
+//   - nothing that never sleeps holds it: no soft body's particle coming at it (into its surface
+//     at kSleepSpeed or faster) or soft triangle within reach, no spring to a soft body, no grab.
+//     A soft body resting on it does not hold it: its particles lie on it as on a fixed body
+//     while it sleeps.
 // Its bodies' P and L become exactly 0, and its contacts are set aside (SleepState::contacts).
 // A sleeping body is not integrated, has no contacts found with the ground, fixed or other
 // sleeping bodies, and is in no solver: it costs its box in the broad phase and nothing else.
 //
 // An island wakes (every body in it, rest times back to 0, its contacts back as the warm start
 // of the solver, so a stack picks up the impulses that held it) when
-//   - a contact is found between one of its bodies and an awake body or a soft body's particle,
+//   - a contact is found between one of its bodies and an awake body or a particle coming at it,
 //     or a soft body's triangle comes within reach of one (the tick it happens, before its
 //     contacts are solved: they are found again with the island awake),
 //   - the app grabs one of its bodies (World::set_grab) or sets its material,

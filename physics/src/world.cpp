@@ -219,8 +219,12 @@ void World::step(float h) {
     // Where the substep begins: symplectic Euler's positions move on from here, and each
     // contact's approach is measured from here.
     if (!rigid_.empty()) y_step_start_ = y_;
-    if (contacts) {
-        for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
+    // And where each particle began it, for its contacts and its impacts with the ground.
+    if (contacts || settings_.ground) {
+        for (SoftBody& body : soft_) {
+            copy(body.v, body.v_step_start);
+            copy(body.x, body.x_step_start);
+        }
     }
     if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_, *pool_);
     switch (settings_.integrator) {
@@ -249,8 +253,12 @@ void World::step(float h) {
             for (SoftBody& body : soft_) rk4_begin(body);
             evaluate_forces(0, true);
             for (int s = 1; s <= 3; ++s) {
-                for (SoftBody& body : soft_) rk4_stage(body, s, h);
+                for (SoftBody& body : soft_) {
+                    rk4_stage(body, s, h);
+                    hold_stage_on_ground(body, settings_);
+                }
                 flat_rk4_stage(y_, k_[s - 1], rk4_stage_offset(s, hd), y_stage_);
+                if (contacts) hold_stage_off_rigid(soft_, contacts_, rigid_, y_contacts_start_, y_stage_);
                 evaluate_forces(s, false);
                 for (SoftBody& body : soft_) rk4_accumulate(body, s);
             }
@@ -313,9 +321,12 @@ ContactWorld World::contact_world() {
             p.verlet_y = body.verlet_step.y.data();
             p.verlet_z = body.verlet_step.z.data();
         }
+        p.x0 = body.x_step_start.x.data();
+        p.y0 = body.x_step_start.y.data();
+        p.z0 = body.x_step_start.z.data();
         solver_particle_v_[b] = &body.v_step_start;
     }
-    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_, pool_.get()};
+    return {rigid_, y_, y_contacts_start_, y_step_start_, solver_particles_, solver_particle_v_, pool_.get(), asleep_};
 }
 
 // Every contact within reach of `reach` seconds (the tick, or the rest of it), found where the
@@ -362,6 +373,7 @@ int World::begin_contacts(double interval, int steps) {
     settings.substeps = steps;
     settings.gravity = Vec3d(settings_.gravity);
     settings.exact_turn = settings_.integrator == Integrator::Verlet || settings_.integrator == Integrator::SymplecticEuler;
+    settings.particle_chord = !settings.exact_turn;
     // As for particles at the ground: impacts slower than two ticks' worth of gravity are
     // resting contact; without gravity, slower than 1 cm/s (else rounding in a push apart would
     // count as an impact, and a bouncing contact is not relaxed: the push would stay in it).

@@ -1,7 +1,7 @@
 // Rolling stays on the surface (contact_solver.h, ground_contact.h): a ball or a cylinder rolling
 // on the ground, and a box sliding on it, stand as deep in it as a ball at rest does, whatever
 // the speed and whatever the integrator; and a ball rolling freely keeps its speed (nothing in
-// a flat, frictionless-in-rolling world takes it).
+// a flat, frictionless-in-rolling world takes it). A soft ball thrown along it stays on it too.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -125,6 +125,29 @@ TEST(RollingStaysOnTheSurface, BoxSlidingFast) {
         }
         EXPECT_LE(deepest, 2.5e-4) << integrator << ": " << deepest * 1e3 << " mm deep";
         EXPECT_LT(length(world.rigid_motion(0).v), 1e-3) << integrator << ": stopped";
+    }
+}
+
+// A soft ball (162 particles, 0.5 m across, k 120) thrown along the ground at 5 m/s: it slides,
+// then rolls, and no particle of it is ever below the ground at a tick's end, as at rest (the
+// ground's contact puts a particle reaching it on it, whatever moved it there), and it goes on
+// (more than 2 m in the second).
+TEST(RollingStaysOnTheSurface, SoftBallThrownAlongTheGround) {
+    for (const char* integrator : kIntegrators) {
+        World world = world_of("{\"soft_bodies\": [{\"name\": \"ball\", \"mesh\": \"ball:2\", \"scale\": 0.5, \"up_axis\": \"z\","
+                               " \"particle_mass\": 0.02, \"stiffness\": 120, \"damping\": 0.5, \"drag_coefficient\": 0,"
+                               " \"position\": [0, 0, 0.2505], \"initial_velocity\": [5, 0, 0]}]}",
+                               integrator);
+        const SoftBody& ball = world.soft_body(0);
+        double lowest = 0.0;
+        for (int t = 0; t < 50; ++t) {
+            world.tick();
+            for (std::size_t i = 0; i < ball.particle_count(); ++i) lowest = std::min(lowest, double(ball.x.z[i]));
+        }
+        EXPECT_GE(lowest, -1e-6) << integrator << ": " << -lowest * 1e3 << " mm below the ground";
+        double x = 0.0;
+        for (std::size_t i = 0; i < ball.particle_count(); ++i) x += double(ball.x.x[i]);
+        EXPECT_GT(x / double(ball.particle_count()), 2.0) << integrator << ": it went on";
     }
 }
 

@@ -230,14 +230,26 @@ TEST(SoftContact, ContactsAreWithTheNearestTriangle) {
     EXPECT_LT(worst_choice(resting), 2e-4);
 }
 
-// The stack of three in soft_stack.json stands: each cube on the one below, at rest.
+// The stack of three in soft_stack.json stands: each cube on the one below, at rest: from 8 s
+// on, every tick for 2 s, each cube's centre slower than 1 cm/s. (Not each particle: the stack
+// sways with a period of about 20 ticks, its top's fastest particle at 1 to 2 cm/s at the sway's
+// peaks at 8 s, and now and then one jolts at up to 3.5 cm/s for a tick; which tick held a trough
+// was chance.)
 TEST(SoftContact, StackOfThreeStands) {
     World world = world_of_file("soft_stack.json");
     world.run(400);
     const double z0 = centre(world, 0).z, z1 = centre(world, 1).z, z2 = centre(world, 2).z;
     EXPECT_NEAR(z1 - z0, 0.5, 0.02);
     EXPECT_NEAR(z2 - z1, 0.5, 0.02);
-    for (std::size_t b = 1; b < 3; ++b) EXPECT_LT(fastest(world, b), 0.01) << b;
+    for (int t = 0; t < 100; ++t) {
+        world.tick();
+        for (std::size_t b = 0; b < 3; ++b) {
+            const SoftBody& body = world.soft_body(b);
+            Vec3d sum;
+            for (std::size_t i = 0; i < body.particle_count(); ++i) sum += Vec3d(body.v[i]);
+            EXPECT_LT(length(sum / double(body.particle_count())), 0.01) << b << " tick " << t;
+        }
+    }
 }
 
 // Whether particle p has crossed the sheet's triangle t between two moments: the sign of its

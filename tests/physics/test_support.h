@@ -87,7 +87,7 @@ inline FlatKeys bare_params() {
 
 // Listing 8's constants as this project's defaults hold them (m 1 kg, k 10 N/m, c 0.1 kg/s,
 // g 9.81 m/s^2 down, dt 0.02 s, ground on), with Listing 8's one step a tick (the project's
-// default picks substeps for stability). Asserted once in params_test.cpp.
+// default picks substeps for stability). Asserted once in keys_test.cpp.
 inline FlatKeys listing8_params() {
     FlatKeys p;
     p.auto_substeps = false;

@@ -32,6 +32,7 @@ struct ParticleContact {
     bool sliding;         // dynamic friction (Eq. 25) acted
     float x0, y0;         // tangential position at the start of the step
     float vx0, vy0;       // tangential velocity at the start of the step
+    float fx = 0.0f, fy = 0.0f;  // friction's force then (Eq. 24 past its limit, or 25), N
 };
 
 struct SoftBody {
