@@ -1434,8 +1434,9 @@ int bench_command(int argc, char** argv) {
         for (const auto& [name, ball, pyramid] : {std::tuple{"ball", true, false}, std::tuple{"pyramid:3", false, true},
                                                   std::tuple{"ball on pyramid:3", true, true}}) {
             const std::size_t n = ball ? 162 : 0;
+            const bool with_ball = ball, with_pyramid = pyramid;  // (the browser build's clang cannot capture a structured binding)
             for (int t : thread_counts) {
-                add({name, n, fast_name, measure_scene(Kernel::Fast, [&] { return ball_on_pyramid(ball, pyramid); }, t, budget, 100)});
+                add({name, n, fast_name, measure_scene(Kernel::Fast, [&] { return ball_on_pyramid(with_ball, with_pyramid); }, t, budget, 100)});
             }
         }
         // Soft contacts: two 2,906-particle cubes, one on the other, against the two apart.
