@@ -31,6 +31,7 @@ struct Islands {
 
 void World::reset_sleep() {
     sleep_.rest_time.assign(rigid_.size(), 0.0);
+    sleep_.rest_pose.assign(rigid_.size() * kRestPoseSize, 0.0);
     sleep_.island.assign(rigid_.size(), kAwake);
     sleep_.deepest.assign(rigid_.size(), 0.0);
     sleep_.contacts.clear();
@@ -120,13 +121,36 @@ void World::update_sleep() {
         overlapping[b] = deepest[b] > kSleepDepth && deepest[b] < sleep_.deepest[b] - kSleepDepthShrink ? 1 : 0;
         sleep_.deepest[b] = deepest[b];
     }
-    // Each body's own rest time, on every thread.
+    // Each body's own rest time, on every thread: it starts when every point is slower than
+    // kSleepSpeed, where the body is then, and goes on while no point has gone further than
+    // kSleepDrift from there or faster than kTwitchSpeed.
     for_chunks(pool_.get(), n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
             if (rigid_[b].fixed || asleep_[b]) continue;
             const RigidMotion m = rigid_motion(b);
-            const double speed = length(m.v) + length(m.omega) * rigid_[b].bounding_radius;
-            sleep_.rest_time[b] = speed < kSleepSpeed && !overlapping[b] ? sleep_.rest_time[b] + dt : 0.0;
+            const double r = rigid_[b].bounding_radius;
+            const double speed = length(m.v) + length(m.omega) * r;
+            double* pose = &sleep_.rest_pose[b * kRestPoseSize];
+            double& rest = sleep_.rest_time[b];
+            if (overlapping[b]) {
+                rest = 0.0;
+            } else if (rest > 0.0 && speed < kTwitchSpeed) {
+                // How far its points went: the centre's move, and the turn's at the body's reach
+                // (the angle between the two orientations, 2 asin of the turn's vector part).
+                const Quat q0{pose[3], pose[4], pose[5], pose[6]};
+                const Quat turn = q0.conjugate() * m.q.normalized();
+                const double half = std::min(1.0, std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z));
+                const double drift = length(m.x - Vec3d{pose[0], pose[1], pose[2]}) + 2.0 * std::asin(half) * r;
+                rest = drift <= kSleepDrift ? rest + dt : 0.0;
+            } else {
+                rest = 0.0;
+            }
+            if (rest == 0.0 && speed < kSleepSpeed && !overlapping[b]) {
+                rest = dt;
+                const Quat q = m.q.normalized();
+                const double start[kRestPoseSize] = {m.x.x, m.x.y, m.x.z, q.w, q.x, q.y, q.z};
+                std::copy(start, start + kRestPoseSize, pose);
+            }
         }
     });
     bool any_rested = false;

@@ -39,6 +39,7 @@ void World::restore(const WorldSnapshot& s) {
     if (s.soft.size() != s.soft_ids.size() || s.rigid.size() != s.rigid_ids.size() * rigid::kStateSize ||
         s.rigid.size() != s.rigid_tick_prev.size() || s.rigid_built.size() != s.rigid_ids.size() ||
         s.sleep.island.size() != s.rigid_ids.size() || s.sleep.rest_time.size() != s.sleep.island.size() ||
+        s.sleep.rest_pose.size() != s.sleep.island.size() * kRestPoseSize ||
         s.links.size() != s.spring_ids.size()) {
         throw std::invalid_argument("World::restore: a snapshot that does not hold together");
     }
@@ -120,7 +121,7 @@ std::size_t WorldSnapshot::bytes() const {
         total += sizeof(Soft) + body.inv_mass.size() * sizeof(float) + (body.def.pinned.size() + body.built.pinned.size()) * 4 +
                  (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
     }
-    return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size()) * sizeof(double) +
+    return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size() + sleep.rest_pose.size()) * sizeof(double) +
            (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + pair_cache.pairs.size() * sizeof(CachedPair) +
            pair_cache.points.size() * sizeof(CachedPoint) + sleep.island.size() * sizeof(std::uint32_t) +
            (rigid_built.size() + rigid_defs.size()) * sizeof(RigidBodyDef) + springs.size() * sizeof(SpringDef) +

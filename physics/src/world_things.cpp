@@ -177,6 +177,7 @@ RigidBodyId World::create_rigid_body(const RigidBodyDef& def) {
     const auto& start = rigid_.back().initial;
     for (auto* y : {&y_, &y_tick_prev_}) y->insert(y->end(), start.begin(), start.end());
     sleep_.rest_time.push_back(0.0);
+    sleep_.rest_pose.insert(sleep_.rest_pose.end(), kRestPoseSize, 0.0);
     sleep_.island.push_back(kAwake);
     sleep_.deepest.push_back(0.0);
     asleep_.push_back(0);
@@ -240,6 +241,8 @@ void World::destroy(RigidBodyId id) {
     const auto first = std::ptrdiff_t(b * rigid::kStateSize), last = first + rigid::kStateSize;
     for (auto* y : {&y_, &y_tick_prev_}) y->erase(y->begin() + first, y->begin() + last);
     sleep_.rest_time.erase(sleep_.rest_time.begin() + std::ptrdiff_t(b));
+    sleep_.rest_pose.erase(sleep_.rest_pose.begin() + std::ptrdiff_t(b * kRestPoseSize),
+                           sleep_.rest_pose.begin() + std::ptrdiff_t((b + 1) * kRestPoseSize));
     sleep_.island.erase(sleep_.island.begin() + std::ptrdiff_t(b));
     sleep_.deepest.erase(sleep_.deepest.begin() + std::ptrdiff_t(b));
     asleep_.erase(asleep_.begin() + std::ptrdiff_t(b));

@@ -280,6 +280,46 @@ TEST(Sleep, BodyDriftingThroughEmptySpaceNeverSleeps) {
     EXPECT_NEAR(position_of(world, 0).x, 0.025, 1e-9);
 }
 
+// A resting body twitched for a moment (as one in a loaded pile is now and then, when a contact
+// beside it is found again with other points) keeps its rest as long as it goes nowhere. A box
+// on friction 0.05, at rest for 0.3 s, set sliding at 8 cm/s: faster than kSleepSpeed for three
+// ticks, it stops within v^2 / (2 mu g) = 6.5 mm (less than kSleepDrift, 2.5 cm) and sleeps
+// 0.5 s after its rest began, as it would have. Set sliding at 20 cm/s it goes 4 cm: it begins
+// its rest again where it slows down, and sleeps 0.5 s after that.
+TEST(Sleep, ATwitchThatGoesNowhereKeepsTheRest) {
+    for (const double kick : {0.08, 0.2}) {
+        Scene scene;
+        RigidBodyDef box;
+        box.name = "crate";
+        box.size = Vec3d{0.5, 0.5, 0.5};
+        box.position = Vec3d{0.0, 0.0, 0.25};
+        box.friction = 0.05;
+        scene.rigid_bodies.push_back(box);
+        World world((scene));
+        while (world.rigid_rest_time(0) < 0.3 - 1e-9) world.tick();
+        ASSERT_LT(world.ticks(), 30u);
+        const std::uint64_t rest_began = world.ticks() - 14;  // 15 ticks of rest: the first counts dt
+        WorldSnapshot snapshot = world.snapshot();
+        snapshot.rigid[rigid::P] += kick / world.rigid_body(0).inv_mass;
+        world.restore(snapshot);
+        std::uint64_t asleep_at = 0;
+        for (int t = 0; t < 100 && asleep_at == 0; ++t) {
+            world.tick();
+            if (world.rigid_asleep(0)) asleep_at = world.ticks();
+        }
+        ASSERT_NE(asleep_at, 0u) << "kick " << kick;
+        const double slid = world.rigid_motion(0).x.x, stops = kick * kick / (2.0 * 0.05 * 9.81);
+        EXPECT_NEAR(slid, stops, 0.1 * stops) << "kick " << kick;
+        if (slid < 0.025) {  // kSleepDrift (physics/src/sleep.h)
+            EXPECT_EQ(asleep_at, rest_began + 24) << "kick " << kick;  // 25 ticks of rest: 0.5 s
+        } else {
+            // Its rest begins again once it is slower than kSleepSpeed, (v - 0.05) / (mu g) after the kick.
+            const std::uint64_t slowed = rest_began + 14 + std::uint64_t((kick - 0.05) / (0.05 * 9.81) / 0.02);
+            EXPECT_GE(asleep_at, slowed + 24) << "kick " << kick;
+        }
+    }
+}
+
 // A resting box sleeps; grabbing it, changing a key or its material wakes it; with the key
 // `sleeping` off nothing sleeps.
 TEST(Sleep, GrabKeysAndMaterialWakeAndTheKeyTurnsItOff) {

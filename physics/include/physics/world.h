@@ -96,8 +96,10 @@ struct Grab {
 // Part of the state a tick carries into the next: a snapshot holds it, so time travel replays
 // a body's falling asleep and waking exactly.
 inline constexpr std::uint32_t kAwake = 0xFFFFFFFFu;
+inline constexpr std::size_t kRestPoseSize = 7;
 struct SleepState {
-    std::vector<double> rest_time;        // per rigid body: s its every point has been slower than kSleepSpeed
+    std::vector<double> rest_time;        // per rigid body: s it has been at rest (sleep.h)
+    std::vector<double> rest_pose;        // per rigid body: its centre (3) and orientation (4) as its rest began
     std::vector<std::uint32_t> island;    // per rigid body: kAwake, or the island it sleeps in (its first body's index)
     std::vector<double> deepest;          // per rigid body: its deepest contact with another as the last tick ended, m
     std::vector<RigidContact> contacts;   // the sleeping islands' contacts as they fell asleep: their warm start on waking
@@ -242,7 +244,7 @@ public:
     // sleeps, costs nothing but its broad-phase box, and wakes when touched by an awake body or
     // a particle, grabbed, or when a key changes.
     bool rigid_asleep(std::size_t i) const { return sleep_.island[i] != kAwake; }
-    // How long the body has been at rest (every point slower than kSleepSpeed), s; 0 while it moves.
+    // How long the body has been at rest (sleep.h), s; 0 while it moves.
     double rigid_rest_time(std::size_t i) const { return sleep_.rest_time[i]; }
     std::size_t sleeping_count() const { return sleep_.sleeping; }
     // Wakes body i's island (nothing when it is awake).
