@@ -251,6 +251,7 @@ private:
     std::vector<Body> bodies_;              // [0]: the static world
     std::vector<Manifold> manifolds_;
     std::vector<Point> points_;
+    std::vector<SetInverses> set_inverses_;  // per manifold: its smaller sets' inverses (block_solver.h)
     std::vector<std::int32_t> rigid_index_;  // rigid body -> solver body (0: static or not in contact)
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
