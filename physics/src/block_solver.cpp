@@ -7,47 +7,20 @@ namespace softbody {
 
 namespace {
 
-// Where each set's inverse starts in SetInverses::inverse: the sets of one point take 1 number,
-// of two 4, of three 9 (the set of all four is BlockInverse's).
-constexpr int kSetOffset[16] = {0, 0, 1, 2, 6, 7, 11, 15, 24, 25, 29, 33, 42, 46, 55, 0};
-
 // Solves K_SS x_S = b_S for the points in `set` (at most four), with 1e-9 of the diagonal
 // added when there are two or more (three collinear corners leave it singular). False when
-// singular all the same. With `sets`, the inverse is the one kept for the manifold's set that
-// `set` is (`points` names the manifold's points), found and kept the first time.
-bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4], double (&x)[4], SetInverses* sets,
-               const int* points) {
+// singular all the same.
+bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
     int index[4], m = 0;
-    unsigned named = 0;
     for (int i = 0; i < n; ++i) {
-        if (set & (1u << i)) {
-            index[m++] = i;
-            named |= 1u << (points ? points[i] : i);
-        }
+        if (set & (1u << i)) index[m++] = i;
     }
-    double A_inv[4][4];
-    const bool keep = sets != nullptr && m < 4;
-    if (keep && (sets->found & (1u << named))) {
-        if (sets->singular & (1u << named)) return false;
-        const double* kept = &sets->inverse[kSetOffset[named]];
-        for (int r = 0; r < m; ++r)
-            for (int c = 0; c < m; ++c) A_inv[r][c] = kept[r * m + c];
-    } else {
-        double A[4][4];
-        for (int r = 0; r < m; ++r) {
-            for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
-            if (m > 1) A[r][r] *= 1.0 + 1e-9;
-        }
-        const bool inverted = invert(m, A, A_inv);
-        if (keep) {
-            sets->found |= std::uint16_t(1u << named);
-            if (!inverted) sets->singular |= std::uint16_t(1u << named);
-            double* kept = &sets->inverse[kSetOffset[named]];
-            for (int r = 0; r < m && inverted; ++r)
-                for (int c = 0; c < m; ++c) kept[r * m + c] = A_inv[r][c];
-        }
-        if (!inverted) return false;
+    double A[4][4], A_inv[4][4];
+    for (int r = 0; r < m; ++r) {
+        for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
+        if (m > 1) A[r][r] *= 1.0 + 1e-9;
     }
+    if (!invert(m, A, A_inv)) return false;
     for (int i = 0; i < n; ++i) x[i] = 0.0;
     for (int r = 0; r < m; ++r) {
         double sum = 0.0;
@@ -162,7 +135,7 @@ void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], Bloc
 // the least impulses is taken (b's part along the null direction z removed, and K_solve's z
 // filled in), which shares the load evenly and changes smoothly as the bodies move.
 void solve_block(const BlockInverse& block, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
-                 bool all_points, SetInverses* sets, const int* points) {
+                 bool all_points) {
     const auto fits = [&](unsigned set, const double (&y)[4]) {
         for (int i = 0; i < n; ++i) {
             if (set & (1u << i)) {
@@ -222,7 +195,7 @@ void solve_block(const BlockInverse& block, int n, const double (&K)[4][4], cons
         const unsigned set = *set_at;
         if (all_points && set == full) continue;
         double y[4];
-        if (solve_set(n, set, K, b, y, sets, points) && fits(set, y)) {
+        if (solve_set(n, set, K, b, y) && fits(set, y)) {
             for (int i = 0; i < n; ++i) x[i] = y[i];
             return;
         }

@@ -5,8 +5,6 @@
 // reach its target: a small linear complementarity problem, solved exactly here.
 #pragma once
 
-#include <cstdint>
-
 namespace softbody {
 
 // What solves K for all points pushing at once, prepared once a tick (prepare_block): K's
@@ -16,18 +14,6 @@ struct BlockInverse {
     double K_solve[4][4] = {};
     double z[4] = {};
     bool singular = false;
-};
-
-// The inverses of a manifold's smaller sets of points (at most three of its four), each found
-// the first time solve_block tries that set and kept while K is the same (a tick, unless a body
-// turns enough to set the manifold up again: then clear()). Found again each time they were the
-// same numbers: the same elimination of the same K, so the same bits, at a fraction of the cost.
-// A set is the manifold's points' bits (bit i: point i).
-struct SetInverses {
-    std::uint16_t found = 0;     // bit s: set s's inverse is in `inverse`
-    std::uint16_t singular = 0;  // bit s: set s has none
-    double inverse[64];          // each set's m x m inverse, row by row, at kSetOffset[s]
-    void clear() { found = singular = 0; }
 };
 
 // The inverse of an n x n matrix (n <= 4) by Gauss-Jordan elimination with partial pivoting;
@@ -41,9 +27,7 @@ void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], Bloc
 // where they push ((K x)_i - b_i is point i's normal velocity above its target: zero where
 // x_i > 0, at least zero where x_i = 0). `all_points`: K is the one `block` was prepared from,
 // so the set of all points is tried first through it; then smaller sets, largest first.
-// `sets`: where the smaller sets' inverses are kept (none: found each time), and `points`, the
-// manifold's point each of the n is (none: 0 to n - 1), to name the sets.
 void solve_block(const BlockInverse& block, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
-                 bool all_points, SetInverses* sets = nullptr, const int* points = nullptr);
+                 bool all_points);
 
 }  // namespace softbody

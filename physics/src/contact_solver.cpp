@@ -133,7 +133,6 @@ void ContactSolver::setup(Manifold& m) {
         q[x][1] = dot(r, m.t[1]);
     }
     prepare_block(n, m.K, q, m.block);
-    set_inverses_[std::size_t(&m - manifolds_.data())].clear();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -282,7 +281,6 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         s.inv_I = R * body.J_body_inv * R.transposed();
         s.I = R * body.J_body * R.transposed();
     });
-    if (set_inverses_.size() < manifolds_.size()) set_inverses_.resize(manifolds_.size());
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
 
     slabs();
@@ -658,8 +656,7 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             }
         }
         if (count > 0) {
-            solve_block(m.block, count, count == n ? m.K : K, b, x, count == n, &set_inverses_[std::size_t(&m - manifolds_.data())],
-                        index);
+            solve_block(m.block, count, count == n ? m.K : K, b, x, count == n);
             for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
         }
         double sum = 0.0;
@@ -950,7 +947,7 @@ void ContactSolver::restitute(bool after_positions) {
                     b[i] += K[i][j] * points_[m.first + std::uint32_t(index[j])].bounce_impulse;
                 }
             }
-            solve_block(m.block, n, K, b, lambda, n == int(m.count), &set_inverses_[std::size_t(&m - manifolds_.data())], index);
+            solve_block(m.block, n, K, b, lambda, n == int(m.count));
             for (int i = 0; i < n; ++i) {
                 Point& p = points_[m.first + std::uint32_t(index[i])];
                 const double applied = lambda[i] - p.bounce_impulse;

@@ -127,15 +127,11 @@ inline Softness make_soft(double hertz, double zeta, double h) {
 // left, so that the contacts' share (v - v_free) can move the positions and the momenta.
 struct SolverBody {
     enum class Kind : std::uint8_t { Static, Rigid, Particle };
-    // What every pass reads and writes first, together.
     Kind kind = Kind::Static;
-    bool round = false;        // a sphere: the same surface however it turns (its anchors do not turn with it)
-    bool refreshed = false;    // they were found again this substep
+    std::uint32_t index = 0;   // the rigid body, or the particle
     std::int32_t soft = -1;    // the particle's soft body
     double inv_mass = 0.0;
-    Vec3d v, w;                // now
     Mat3 inv_I;                // J_world^-1 (Eq. 32) as the tick began; zero for a particle
-    std::uint32_t index = 0;   // the rigid body, or the particle
     Mat3 I;                    // J_world, its inverse
     Vec3d x0;                  // centre (or particle) as the contacts were found
     Quat q0;
@@ -143,8 +139,11 @@ struct SolverBody {
     Quat q_now;                // orientation at the same moment
     Quat q_ref;                // where inv_I and I were found (and the anchors placed)
     Vec3d L_free, L_start;     // angular momentum after the free step, and as the substep began
+    bool refreshed = false;    // they were found again this substep
+    Vec3d v, w;                // now
     Vec3d v_free, w_free;      // as the integrator left them this substep
     Vec3d v_start, w_start;    // as the substep began
+    bool round = false;        // a sphere: the same surface however it turns (its anchors do not turn with it)
     Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
     Mat3 turn;                 // the turn of its anchors over the same (none for a round body)
     Vec3d dp_free;             // the same to the free step's end
@@ -152,27 +151,24 @@ struct SolverBody {
     Mat3 turn_free;
 };
 
-// The fields every pass of the solve reads come first, together (two cache lines): a pile has
-// thousands of points and the passes stream through them.
-struct alignas(64) SolverPoint {
-    Vec3d c_a, c_b;            // r x n: a turn's share of the normal velocity, w . (r x n)
-    double s = 0.0;            // separation now, m
-    double offset = 0.0;       // closing speed of the free step's displacement less its end velocity's, m/s
-    double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
-    double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
-    double total_normal = 0.0;    // over the tick (total_bounce below)
-    Softness softness;         // of the push apart where it overlaps
+struct SolverPoint {
     Vec3d r_a0, r_b0;          // anchors from the centres as the contacts were found
     Vec3d at;                  // where the impulses act (world): the point, or between the two anchors now
     Vec3d r_a, r_b;            // from the centres to it (Eq. 38's r)
+    Vec3d c_a, c_b;            // r x n: a turn's share of the normal velocity, w . (r x n)
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
+    double s = 0.0;            // separation now, m
     double s_start = 0.0;      // as the substep began, m
     double s_moved = 0.0;      // once the substep's positions moved, m
+    double offset = 0.0;       // closing speed of the free step's displacement less its end velocity's, m/s
+    double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
+    Softness softness;         // of the push apart where it overlaps
+    double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
     double bounce_impulse = 0.0;  // restitution's, this substep
     double bounce = 0.0;          // > 0: bounces this substep from this speed, m/s
     double bounce_target = 0.0;   // the normal velocity the bounce leaves with
     double pending = 0.0;         // > 0: met its surface this tick at this speed; bounces as it ends
-    double total_bounce = 0.0;    // over the tick
+    double total_normal = 0.0, total_bounce = 0.0;  // over the tick
     double v_n0 = 0.0;            // v_rel . n as the tick began
     std::uint32_t contact = 0;    // in the tick's list
 };
@@ -180,13 +176,13 @@ struct alignas(64) SolverPoint {
 inline constexpr std::uint32_t kMaxManifoldPoints = 4;
 
 struct SolverManifold {
-    // What every pass reads first, then the coupling and its inverse; the rest after.
     std::uint32_t a = 0, b = 0;  // solver bodies
+    Vec3d n, t[2];
+    double mu = 0.0, e = 0.0;
     std::uint32_t first = 0, count = 0;
+    std::uint32_t island = 0;
     bool bouncing = false;       // some point bounces now
     bool bounced = false;        // some point bounced before the positions this substep
-    double mu = 0.0;
-    Vec3d n, t[2];
     // Friction, at the points' centre: its anchors' r x t, effective masses, and impulses
     // (this substep's, warm-started; over the tick); the turn about n and its reach.
     Vec3d ft_a[2], ft_b[2];
@@ -194,17 +190,14 @@ struct SolverManifold {
     double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};
     double twist_mass = 0.0, twist_radius = 0.0, twist = 0.0;
     // Rolling resistance: C_rr r (the largest torque per unit normal force), what stops the
-    // two sides' relative turn (the inverse of J_a^-1 + J_b^-1: roll_mass), and its angular
-    // impulse.
+    // two sides' relative turn (the inverse of J_a^-1 + J_b^-1), and its angular impulse.
     double roll_arm = 0.0;
+    Mat3 roll_mass;
     Vec3d roll;
     // The points' coupling K (K_ij: point i's change of normal velocity per unit impulse at
     // point j), and what solves it for all points pushing (block_solver.h).
     double K[4][4] = {};
     BlockInverse block;
-    Mat3 roll_mass;
-    double e = 0.0;
-    std::uint32_t island = 0;
 };
 
 class ContactSolver {
@@ -251,7 +244,6 @@ private:
     std::vector<Body> bodies_;              // [0]: the static world
     std::vector<Manifold> manifolds_;
     std::vector<Point> points_;
-    std::vector<SetInverses> set_inverses_;  // per manifold: its smaller sets' inverses (block_solver.h)
     std::vector<std::int32_t> rigid_index_;  // rigid body -> solver body (0: static or not in contact)
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
