@@ -38,6 +38,9 @@ constexpr std::size_t kManifoldGrain = 16;
 // Slabs the moving bodies are cut into for the solver's passes (slabs()): fixed, whatever the
 // thread count; enough for a few a thread on machines of a few cores.
 constexpr std::size_t kBlocks = 8;
+// The groups of manifolds slabs() makes: each slab's, each boundary's between two neighbouring
+// slabs (kBlocks - 1), and those across slabs further apart.
+constexpr std::size_t kGroups = 2 * kBlocks;
 
 Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 
@@ -353,21 +356,33 @@ void ContactSolver::parallel(std::size_t count, std::size_t grain, const F& f) {
 // it), each holding the same number of bodies. A manifold whose moving bodies are all in one
 // slab belongs to it; the slabs' manifolds are solved at once, each slab's in the manifolds'
 // own order on one thread (a slab shares no moving body with another: the static world is
-// shared by all, and never written to). The manifolds across two slabs follow, in their order,
-// on one thread. The order is the same whatever the thread count: the same bits at any.
+// shared by all, and never written to). Then the manifolds across two neighbouring slabs, a
+// boundary's on one thread: the boundaries 0|1, 2|3, 4|5, 6|7 at once (they share no slab),
+// then 1|2, 3|4, 5|6. The few across slabs further apart follow, in their order, on one
+// thread. The order is the same whatever the thread count: the same bits at any.
 template <class F>
 void ContactSolver::each_in_slabs(const F& f) {
-    if (slab_start_.size() < 2) return;
-    const std::size_t blocks = slab_start_.size() - 2;  // the last group: across slabs
-    const auto run_block = [&](std::size_t c) {
+    if (slab_start_.size() < kGroups + 1) return;
+    const auto run_group = [&](std::size_t c) {
         for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[slab_order_[i]]);
     };
-    if (pool_ && pool_->threads() > 1 && manifolds_.size() >= kManifoldGrain * blocks) {
-        pool_->run(blocks, run_block);
+    const bool threads = pool_ && pool_->threads() > 1 && manifolds_.size() >= kManifoldGrain * kBlocks;
+    // Groups [first, first + 2 (count - 1)] by twos.
+    const auto run_groups = [&](std::size_t first, std::size_t count) {
+        if (threads) {
+            pool_->run(count, [&](std::size_t k) { run_group(first + 2 * k); });
+        } else {
+            for (std::size_t k = 0; k < count; ++k) run_group(first + 2 * k);
+        }
+    };
+    if (threads) {
+        pool_->run(kBlocks, run_group);
     } else {
-        for (std::size_t c = 0; c < blocks; ++c) run_block(c);
+        for (std::size_t c = 0; c < kBlocks; ++c) run_group(c);
     }
-    run_block(blocks);
+    run_groups(kBlocks, kBlocks / 2);          // boundaries 0|1, 2|3, ...
+    run_groups(kBlocks + 1, kBlocks / 2 - 1);  // 1|2, 3|4, ...
+    run_group(kGroups - 1);                    // the rest
 }
 
 // Why slabs and not a colouring (a graph colouring, tried first): a colour takes
@@ -397,16 +412,18 @@ void ContactSolver::slabs() {
     });
     std::vector<std::uint32_t> slab(n, 0);
     for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r]] = std::uint32_t(r * kBlocks / by_place.size());
-    // Each manifold to its slab, or across (kBlocks); then laid out slab after slab, in order.
-    std::vector<std::uint32_t> group(manifolds_.size()), count(kBlocks + 2, 0);
+    // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
+    // (the last group); then laid out group after group, each in order.
+    std::vector<std::uint32_t> group(manifolds_.size()), count(kGroups + 1, 0);
     for (std::size_t i = 0; i < manifolds_.size(); ++i) {
         const Manifold& m = manifolds_[i];
         const std::uint32_t a = m.a != 0 ? slab[m.a] : slab[m.b], b = m.b != 0 ? slab[m.b] : a;
-        group[i] = a == b ? a : std::uint32_t(kBlocks);
+        const std::uint32_t low = std::min(a, b), high = std::max(a, b);
+        group[i] = low == high ? low : high == low + 1 ? std::uint32_t(kBlocks) + low : std::uint32_t(kGroups - 1);
         ++count[group[i] + 1];
     }
-    slab_start_.assign(kBlocks + 2, 0);
-    for (std::size_t c = 0; c <= kBlocks; ++c) slab_start_[c + 1] = slab_start_[c] + count[c + 1];
+    slab_start_.assign(kGroups + 1, 0);
+    for (std::size_t c = 0; c < kGroups; ++c) slab_start_[c + 1] = slab_start_[c] + count[c + 1];
     std::vector<std::uint32_t> at(slab_start_.begin(), slab_start_.end() - 1);
     slab_order_.resize(manifolds_.size());
     for (std::size_t i = 0; i < manifolds_.size(); ++i) slab_order_[at[group[i]]++] = std::uint32_t(i);

@@ -248,9 +248,9 @@ private:
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
     ContactEnergy energy_;
-    // The manifolds by slab (slabs()): slab c is slab_order_[slab_start_[c]] up to
-    // slab_start_[c + 1], no two slabs sharing a moving body; the last group, the manifolds
-    // across two slabs, is solved after them in order on one thread.
+    // The manifolds by group (slabs()): group c is slab_order_[slab_start_[c]] up to
+    // slab_start_[c + 1]. First each slab's (no two sharing a moving body), then each boundary's
+    // between two neighbouring slabs, then those across slabs further apart (each_in_slabs).
     std::vector<std::uint32_t> slab_order_;
     std::vector<std::uint32_t> slab_start_;
     ThreadPool* pool_ = nullptr;
