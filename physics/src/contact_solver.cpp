@@ -287,6 +287,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
 
     slabs();
+    lay_out();
 
     // Islands: bodies joined by this tick's contacts (the static world joins nothing; a soft
     // body's particles are one body here). Restitution's energy is bounded per island.
@@ -364,7 +365,7 @@ template <class F>
 void ContactSolver::each_in_slabs(const F& f) {
     if (slab_start_.size() < kGroups + 1) return;
     const auto run_group = [&](std::size_t c) {
-        for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[slab_order_[i]]);
+        for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[i]);
     };
     const bool threads = pool_ && pool_->threads() > 1 && manifolds_.size() >= kManifoldGrain * kBlocks;
     // Groups [first, first + 2 (count - 1)] by twos.
@@ -427,6 +428,26 @@ void ContactSolver::slabs() {
     std::vector<std::uint32_t> at(slab_start_.begin(), slab_start_.end() - 1);
     slab_order_.resize(manifolds_.size());
     for (std::size_t i = 0; i < manifolds_.size(); ++i) slab_order_[at[group[i]]++] = std::uint32_t(i);
+}
+
+// The manifolds and their points laid out in the order the passes take them (slabs(): slab after
+// slab, then the boundaries), so that each pass reads them through memory in order: in a
+// 20-layer pyramid they are 37 MB, read 16 times a tick.
+void ContactSolver::lay_out() {
+    manifold_scratch_.resize(manifolds_.size());
+    point_scratch_.resize(points_.size());
+    found_order_.resize(manifolds_.size());
+    std::uint32_t next = 0;
+    for (std::size_t i = 0; i < slab_order_.size(); ++i) {
+        const std::uint32_t from = slab_order_[i];
+        Manifold& m = manifold_scratch_[i] = manifolds_[from];
+        std::copy_n(points_.begin() + m.first, m.count, point_scratch_.begin() + next);
+        m.first = next;
+        next += m.count;
+        found_order_[from] = std::uint32_t(i);
+    }
+    manifolds_.swap(manifold_scratch_);
+    points_.swap(point_scratch_);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -861,7 +882,8 @@ void ContactSolver::substep(const ContactWorld& world) {
     // on a pyramid of boxes gained 2.7% of the energy in play under RK4, 5.9% with softer
     // dampers. (Under Verlet and symplectic Euler the two are one.)
     if (settings_.particle_chord) {
-        for (const Manifold& m : manifolds_) {
+        for (const std::uint32_t at : found_order_) {
+            const Manifold& m = manifolds_[at];
             Body &A = bodies_[m.a], &B = bodies_[m.b];
             if (A.kind != Body::Kind::Particle) continue;
             const Point& p = points_[m.first];
@@ -945,7 +967,8 @@ void ContactSolver::restitute(bool after_positions) {
         if (!after_positions) W_before[island_of_[touched[k]]] += work(s, false);
     }
     for (int round = 0; round < settings_.restitution_passes; ++round) {
-        for (Manifold& m : manifolds_) {
+        for (const std::uint32_t at : found_order_) {
+            Manifold& m = manifolds_[at];
             if (!m.bouncing) continue;
             Body &A = bodies_[m.a], &B = bodies_[m.b];
             // The bouncing points only: the others stay as the solve left them.

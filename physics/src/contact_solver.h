@@ -229,6 +229,7 @@ private:
     void forget_bounced();
     double work(const Body& body, bool shown) const;
     void slabs();
+    void lay_out();
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
     // f(i) for every i below count, on the pool's threads when there are enough: only for items
@@ -253,6 +254,12 @@ private:
     // between two neighbouring slabs, then those across slabs further apart (each_in_slabs).
     std::vector<std::uint32_t> slab_order_;
     std::vector<std::uint32_t> slab_start_;
+    // After lay_out(), the manifolds are in that order: found_order_[k] is where the k-th
+    // manifold as found is now (the order of the loops whose bits depend on it: restitution's
+    // rounds, the particles' chords). The scratch holds the last tick's, for its memory.
+    std::vector<std::uint32_t> found_order_;
+    std::vector<Manifold> manifold_scratch_;
+    std::vector<Point> point_scratch_;
     ThreadPool* pool_ = nullptr;
 };
 
