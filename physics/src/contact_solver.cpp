@@ -3,6 +3,7 @@
 #include "integrators.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 #include <tuple>
@@ -29,11 +30,13 @@ constexpr double kSpeculative = 1e-6;
 // Two points of a pair of bodies, a tick apart, this close are the same contact (m).
 constexpr double kSamePoint = 5e-3;
 
-// The least work worth handing to another thread: bodies (a free turn each, in the positions)
-// and manifolds (one pass of a block solve each; the slabs go to the threads from kManifoldGrain
-// a slab). Fewer run on the calling thread. Which thread runs what never changes the bits.
+// The least work worth handing to another thread: bodies (a free turn each, in the positions),
+// manifolds (one pass of a block solve each; the slabs go to the threads from kManifoldGrain
+// a slab) and points (a field or two each). Fewer run on the calling thread. Which thread runs
+// what never changes the bits.
 constexpr std::size_t kBodyGrain = 32;
 constexpr std::size_t kManifoldGrain = 16;
+constexpr std::size_t kPointGrain = 64;
 
 // Slabs the moving bodies are cut into for the solver's passes (slabs()): fixed, whatever the
 // thread count; enough for a few a thread on machines of a few cores.
@@ -437,15 +440,18 @@ void ContactSolver::lay_out() {
     manifold_scratch_.resize(manifolds_.size());
     point_scratch_.resize(points_.size());
     found_order_.resize(manifolds_.size());
+    std::vector<std::uint32_t> first(slab_order_.size());
     std::uint32_t next = 0;
     for (std::size_t i = 0; i < slab_order_.size(); ++i) {
-        const std::uint32_t from = slab_order_[i];
-        Manifold& m = manifold_scratch_[i] = manifolds_[from];
-        std::copy_n(points_.begin() + m.first, m.count, point_scratch_.begin() + next);
-        m.first = next;
-        next += m.count;
-        found_order_[from] = std::uint32_t(i);
+        first[i] = next;
+        next += manifolds_[slab_order_[i]].count;
+        found_order_[slab_order_[i]] = std::uint32_t(i);
     }
+    parallel(slab_order_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifold_scratch_[i] = manifolds_[slab_order_[i]];
+        std::copy_n(points_.begin() + m.first, m.count, point_scratch_.begin() + first[i]);
+        m.first = first[i];
+    });
     manifolds_.swap(manifold_scratch_);
     points_.swap(point_scratch_);
 }
@@ -805,8 +811,9 @@ void ContactSolver::substep(const ContactWorld& world) {
     // Which points bounce before the positions move: those touching as the substep begins and
     // coming in faster than a resting contact does. The bounce leaves at -e times that speed,
     // plus what the substep's forces add to it (as the free step would have).
-    bool bouncing = false;
-    for (Manifold& m : manifolds_) {
+    std::atomic<bool> any_bouncing{false};
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
         m.bouncing = false;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
@@ -820,16 +827,18 @@ void ContactSolver::substep(const ContactWorld& world) {
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
             p.bounce = -vn_start;
             p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
-            m.bouncing = bouncing = true;
+            m.bouncing = true;
+            any_bouncing.store(true, std::memory_order_relaxed);
         }
-    }
+    });
+    const bool bouncing = any_bouncing.load();
 
     // Warm start: the impulses that held the contacts in the last substep, again.
     each_in_slabs([&](Manifold& m) { warm_start(m); });
 
     solve(true);
     if (bouncing) restitute(false);
-    for (Manifold& m : manifolds_) m.bounced = m.bouncing;
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { manifolds_[i].bounced = manifolds_[i].bouncing; });
 
     // The positions: the free step's, moved on by h times what the contacts changed. The turn:
     // under symplectic Euler and Verlet the free turn again from where the substep began, with
@@ -869,7 +878,7 @@ void ContactSolver::substep(const ContactWorld& world) {
     });
     refresh(world);
     separations();
-    for (Point& p : points_) p.s_moved = p.s;
+    parallel(points_.size(), kPointGrain, [&](std::size_t k) { points_[k].s_moved = points_[k].s; });
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
     // Under RK4 and explicit Euler, a particle its contact pushed leaves with the velocity it
     // moved with along the normal (its chord), not with what its integrator's end velocity still
@@ -910,8 +919,9 @@ void ContactSolver::substep(const ContactWorld& world) {
     // the substep's acceleration, sqrt(v_n^2 + 2 a s), once the tick is over (finish): so the
     // tick ends with the bodies touching, and a ball seen tick by tick (or drawn between ticks)
     // turns at the surface, not above it. It rests there for the rest of the tick, held.
-    for (Manifold& m : manifolds_) {
-        if (m.e <= 0.0) continue;
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
+        if (m.e <= 0.0) return;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
@@ -927,7 +937,7 @@ void ContactSolver::substep(const ContactWorld& world) {
             const bool closing = vn_start < 0.0 || a_n < 0.0;
             if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::max(p.pending, std::sqrt(speed2));
         }
-    }
+    });
     forget_bounced();
     store(world);
 }
@@ -936,12 +946,13 @@ void ContactSolver::substep(const ContactWorld& world) {
 // Warm starting it from the impulse that stopped it would throw it again, and its friction,
 // limited by that impulse, would spin it up.
 void ContactSolver::forget_bounced() {
-    for (Manifold& m : manifolds_) {
-        if (!m.bounced && !m.bouncing) continue;
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
+        if (!m.bounced && !m.bouncing) return;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].normal_impulse = 0.0;
         m.friction[0] = m.friction[1] = m.twist = 0.0;
         m.roll = Vec3d{};
-    }
+    });
 }
 
 // Restitution: each manifold's bouncing points toward their bounce_target together
@@ -1076,8 +1087,9 @@ void ContactSolver::store(const ContactWorld& world) {
 void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWorld& world) {
     if (manifolds_.empty()) return;
     // The bounces due: points that met their surface in this tick, from there.
-    bool due = false;
-    for (Manifold& m : manifolds_) {
+    std::atomic<bool> any_due{false};
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
         m.bouncing = m.bounced = false;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
@@ -1086,11 +1098,13 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             if (p.pending > 0.0 && m.e > 0.0) {
                 p.bounce = p.pending;
                 p.bounce_target = m.e * p.pending;
-                m.bouncing = due = true;
+                m.bouncing = true;
+                any_due.store(true, std::memory_order_relaxed);
             }
             p.pending = 0.0;
         }
-    }
+    });
+    const bool due = any_due.load();
     if (due) {
         for (std::size_t b = 1; b < bodies_.size(); ++b) {
             Body& s = bodies_[b];
@@ -1112,7 +1126,8 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
         store(world);
     }
     // The record: what each point took over the tick, and what the next tick starts from.
-    for (const Manifold& m : manifolds_) {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             const Point& p = points_[k];
             RigidContact& c = contacts[p.contact];
@@ -1137,7 +1152,7 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             c.warm_roll = m.roll * (share_last / h_);
             c.depth = -p.s;
         }
-    }
+    });
 }
 
 }  // namespace softbody
