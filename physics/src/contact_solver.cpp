@@ -199,19 +199,28 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // one with the same features; failing that (a face exactly over another's edge is clipped
     // into points whose features flip with rounding), the nearest of the same two bodies
     // within kSamePoint that no other took. Sorted by key, in log time.
-    std::vector<std::uint32_t> last(previous.size());
-    std::iota(last.begin(), last.end(), 0u);
-    std::sort(last.begin(), last.end(), [&](std::uint32_t x, std::uint32_t y) { return key_of(previous[x]) < key_of(previous[y]); });
+    // The keys are found once (in parallel) and sorted with the contact's place, so that equal
+    // keys too come in one order on every run.
+    std::vector<std::pair<Key, std::uint32_t>> last(previous.size());
+    parallel(previous.size(), kPointGrain, [&](std::size_t k) { last[k] = {key_of(previous[k]), std::uint32_t(k)}; });
+    std::sort(last.begin(), last.end());
     std::vector<char> taken(previous.size(), 0);
     const auto lower = [&](const Key& key) {
-        return std::lower_bound(last.begin(), last.end(), key, [&](std::uint32_t k, const Key& want) { return key_of(previous[k]) < want; });
+        return std::lower_bound(last.begin(), last.end(), key, [](const std::pair<Key, std::uint32_t>& k, const Key& want) { return k.first < want; });
     };
+    // The same features: looked up in parallel, then taken in the contacts' order.
     std::vector<std::int64_t> match(contacts.size(), -1);
+    parallel(contacts.size(), kPointGrain, [&](std::size_t k) {
+        const Key key = key_of(contacts[k]);
+        const auto found = lower(key);
+        if (found != last.end() && found->first == key) match[k] = found->second;
+    });
     for (std::size_t k = 0; k < contacts.size(); ++k) {
-        const auto found = lower(key_of(contacts[k]));
-        if (found != last.end() && key_of(previous[*found]) == key_of(contacts[k]) && !taken[*found]) {
-            match[k] = *found;
-            taken[*found] = 1;
+        if (match[k] < 0) continue;
+        if (taken[std::size_t(match[k])]) {
+            match[k] = -1;
+        } else {
+            taken[std::size_t(match[k])] = 1;
         }
     }
     for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -219,32 +228,29 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (match[k] >= 0 || c.soft >= 0) continue;
         double best = kSamePoint * kSamePoint;
         for (auto it = lower({c.soft, c.a, c.b, 0u}); it != last.end(); ++it) {
-            const RigidContact& p = previous[*it];
+            const RigidContact& p = previous[it->second];
             if (p.soft != c.soft || p.a != c.a || p.b != c.b) break;
             const Vec3d d = p.point - c.point;
-            if (!taken[*it] && dot(d, d) < best) {
+            if (!taken[it->second] && dot(d, d) < best) {
                 best = dot(d, d);
-                match[k] = *it;
+                match[k] = it->second;
             }
         }
         if (match[k] >= 0) taken[std::size_t(match[k])] = 1;
     }
     const auto warm = [&](std::size_t k) -> const RigidContact* { return match[k] >= 0 ? &previous[std::size_t(match[k])] : nullptr; };
 
-    points_.resize(contacts.size());
+    // The manifolds as found: a pair's points next to each other (RigidContact's order), at
+    // most four, and their solver bodies in order of first appearance. Then each is built where
+    // the passes take it (slabs()), its points after the last one's: every pass reads them through
+    // memory in order (in a 20-layer pyramid they are 37 MB, read 16 times a tick).
+    std::vector<FoundManifold> found;
     for (std::size_t i = 0; i < contacts.size();) {
         const RigidContact& first = contacts[i];
-        Manifold m;
-        m.a = first.soft >= 0 ? particle(first.soft, first.a) : rigid_body(first.a);
-        m.b = rigid_body(first.b);
-        m.n = first.normal;
-        contact_tangents(m.n, m.t[0], m.t[1]);
-        // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
-        // for one already sliding: particle_contacts.h); a rigid body has one mu.
-        m.mu = first.soft >= 0 ? first.static_friction : first.friction;
-        m.e = first.restitution;
-        m.roll_arm = first.rolling;
-        m.first = std::uint32_t(i);
+        FoundManifold f;
+        f.a = first.soft >= 0 ? particle(first.soft, first.a) : rigid_body(first.a);
+        f.b = rigid_body(first.b);
+        f.contact = std::uint32_t(i);
         std::size_t end = i + 1;
         if (first.soft < 0) {
             while (end < contacts.size() && end < i + kMaxManifoldPoints && contacts[end].soft < 0 &&
@@ -252,11 +258,43 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
                 ++end;
             }
         }
-        m.count = std::uint32_t(end - i);
+        f.count = std::uint32_t(end - i);
+        found.push_back(f);
+        i = end;
+    }
+    pool_ = world.pool;
+    slabs(found);
+    manifolds_.resize(found.size());
+    points_.resize(contacts.size());
+    found_order_.resize(found.size());
+    std::vector<std::uint32_t> first_point(found.size());
+    std::uint32_t next = 0;
+    for (std::size_t at = 0; at < found.size(); ++at) {
+        first_point[at] = next;
+        next += found[slab_order_[at]].count;
+        found_order_[slab_order_[at]] = std::uint32_t(at);
+    }
+    parallel(found.size(), kManifoldGrain, [&](std::size_t at) {
+        const FoundManifold& f = found[slab_order_[at]];
+        const RigidContact& first = contacts[f.contact];
+        Manifold& m = manifolds_[at];
+        m = Manifold{};
+        m.a = f.a;
+        m.b = f.b;
+        m.n = first.normal;
+        contact_tangents(m.n, m.t[0], m.t[1]);
+        // A particle at rest on the surface is held by Eq. 24's mu_s (static_friction is mu_d
+        // for one already sliding: particle_contacts.h); a rigid body has one mu.
+        m.mu = first.soft >= 0 ? first.static_friction : first.friction;
+        m.e = first.restitution;
+        m.roll_arm = first.rolling;
+        m.first = first_point[at];
+        m.count = f.count;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        for (std::size_t k = i; k < end; ++k) {
+        for (std::uint32_t j = 0; j < f.count; ++j) {
+            const std::size_t k = f.contact + j;
             const RigidContact& c = contacts[k];
-            Point& p = points_[k];
+            Point& p = points_[m.first + j];
             p = Point{};
             p.contact = std::uint32_t(k);
             p.r_a = p.r_a0 = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
@@ -272,10 +310,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
                 m.roll += before->warm_roll * h_;
             }
         }
-        manifolds_.push_back(m);
-        i = end;
-    }
-    pool_ = world.pool;
+    });
     // Each rigid body's inertia in world axes, Eq. 32 with q made unit first (between
     // renormalisations |q| drifts under explicit Euler and RK4), so that I and inv_I are each
     // other's inverse: the impulses' L (I dw) is then exactly r x j.
@@ -289,8 +324,6 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     });
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
 
-    slabs();
-    lay_out();
 
     // Islands: bodies joined by this tick's contacts (the static world joins nothing; a soft
     // body's particles are one body here). Restitution's energy is bounded per island.
@@ -394,7 +427,7 @@ void ContactSolver::each_in_slabs(const F& f) {
 // top layers reached the ground a layer a pass instead of in one pass from the bottom up (the
 // contacts' order): pyramid:20 took 47 ticks instead of 30 to fall asleep, and each tick 40%
 // longer on one thread (the bodies visited out of memory order).
-void ContactSolver::slabs() {
+void ContactSolver::slabs(std::span<const FoundManifold> found) {
     // The axis the moving bodies spread most on, and each one's slab along it.
     const std::size_t n = bodies_.size();
     Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -418,9 +451,9 @@ void ContactSolver::slabs() {
     for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r]] = std::uint32_t(r * kBlocks / by_place.size());
     // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
     // (the last group); then laid out group after group, each in order.
-    std::vector<std::uint32_t> group(manifolds_.size()), count(kGroups + 1, 0);
-    for (std::size_t i = 0; i < manifolds_.size(); ++i) {
-        const Manifold& m = manifolds_[i];
+    std::vector<std::uint32_t> group(found.size()), count(kGroups + 1, 0);
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        const FoundManifold& m = found[i];
         const std::uint32_t a = m.a != 0 ? slab[m.a] : slab[m.b], b = m.b != 0 ? slab[m.b] : a;
         const std::uint32_t low = std::min(a, b), high = std::max(a, b);
         group[i] = low == high ? low : high == low + 1 ? std::uint32_t(kBlocks) + low : std::uint32_t(kGroups - 1);
@@ -429,31 +462,8 @@ void ContactSolver::slabs() {
     slab_start_.assign(kGroups + 1, 0);
     for (std::size_t c = 0; c < kGroups; ++c) slab_start_[c + 1] = slab_start_[c] + count[c + 1];
     std::vector<std::uint32_t> at(slab_start_.begin(), slab_start_.end() - 1);
-    slab_order_.resize(manifolds_.size());
-    for (std::size_t i = 0; i < manifolds_.size(); ++i) slab_order_[at[group[i]]++] = std::uint32_t(i);
-}
-
-// The manifolds and their points laid out in the order the passes take them (slabs(): slab after
-// slab, then the boundaries), so that each pass reads them through memory in order: in a
-// 20-layer pyramid they are 37 MB, read 16 times a tick.
-void ContactSolver::lay_out() {
-    manifold_scratch_.resize(manifolds_.size());
-    point_scratch_.resize(points_.size());
-    found_order_.resize(manifolds_.size());
-    std::vector<std::uint32_t> first(slab_order_.size());
-    std::uint32_t next = 0;
-    for (std::size_t i = 0; i < slab_order_.size(); ++i) {
-        first[i] = next;
-        next += manifolds_[slab_order_[i]].count;
-        found_order_[slab_order_[i]] = std::uint32_t(i);
-    }
-    parallel(slab_order_.size(), kManifoldGrain, [&](std::size_t i) {
-        Manifold& m = manifold_scratch_[i] = manifolds_[slab_order_[i]];
-        std::copy_n(points_.begin() + m.first, m.count, point_scratch_.begin() + first[i]);
-        m.first = first[i];
-    });
-    manifolds_.swap(manifold_scratch_);
-    points_.swap(point_scratch_);
+    slab_order_.resize(found.size());
+    for (std::size_t i = 0; i < found.size(); ++i) slab_order_[at[group[i]]++] = std::uint32_t(i);
 }
 
 // ---------------------------------------------------------------------------------------------

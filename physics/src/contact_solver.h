@@ -228,8 +228,11 @@ private:
     void restitute(bool after_positions);
     void forget_bounced();
     double work(const Body& body, bool shown) const;
-    void slabs();
-    void lay_out();
+    // A manifold as found: its first contact in the tick's list, how many, its two bodies.
+    struct FoundManifold {
+        std::uint32_t contact = 0, count = 0, a = 0, b = 0;
+    };
+    void slabs(std::span<const FoundManifold> found);
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
     // f(i) for every i below count, on the pool's threads when there are enough: only for items
@@ -249,17 +252,15 @@ private:
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
     ContactEnergy energy_;
-    // The manifolds by group (slabs()): group c is slab_order_[slab_start_[c]] up to
-    // slab_start_[c + 1]. First each slab's (no two sharing a moving body), then each boundary's
-    // between two neighbouring slabs, then those across slabs further apart (each_in_slabs).
+    // The manifolds by group (slabs()), laid out in that order (prepare): group c is
+    // manifolds_[slab_start_[c]] up to manifolds_[slab_start_[c + 1]]. First each slab's (no two
+    // sharing a moving body), then each boundary's between two neighbouring slabs, then those
+    // across slabs further apart (each_in_slabs). slab_order_[i] is which manifold as found is
+    // manifolds_[i]; found_order_ the other way round (the order of the loops whose bits depend
+    // on it: restitution's rounds, the particles' chords).
     std::vector<std::uint32_t> slab_order_;
     std::vector<std::uint32_t> slab_start_;
-    // After lay_out(), the manifolds are in that order: found_order_[k] is where the k-th
-    // manifold as found is now (the order of the loops whose bits depend on it: restitution's
-    // rounds, the particles' chords). The scratch holds the last tick's, for its memory.
     std::vector<std::uint32_t> found_order_;
-    std::vector<Manifold> manifold_scratch_;
-    std::vector<Point> point_scratch_;
     ThreadPool* pool_ = nullptr;
 };
 
