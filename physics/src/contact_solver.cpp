@@ -91,9 +91,10 @@ void ContactSolver::setup(Manifold& m) {
     const Body &A = bodies_[m.a], &B = bodies_[m.b];
     const int n = int(m.count);
     Point* points = &points_[m.first];
+    PassPoint* pass = &pass_[m.first];
     for (int x = 0; x < n; ++x) {
-        points[x].c_a = cross(points[x].r_a, m.n);
-        points[x].c_b = cross(points[x].r_b, m.n);
+        pass[x].c_a = cross(points[x].r_a, m.n);
+        pass[x].c_b = cross(points[x].r_b, m.n);
     }
     // Friction acts at the points' centre, and turns about n within their mean distance from it
     // (solve()).
@@ -116,8 +117,8 @@ void ContactSolver::setup(Manifold& m) {
     // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
     for (int x = 0; x < n; ++x) {
         for (int y = 0; y < n; ++y) {
-            m.K[x][y] = A.inv_mass + B.inv_mass + dot(points[x].c_a, A.inv_I * points[y].c_a) +
-                        dot(points[x].c_b, B.inv_I * points[y].c_b);
+            m.K[x][y] = A.inv_mass + B.inv_mass + dot(pass[x].c_a, A.inv_I * pass[y].c_a) +
+                        dot(pass[x].c_b, B.inv_I * pass[y].c_b);
         }
     }
     // The push apart is a spring (contact_hertz, twice that against the static world, which
@@ -127,7 +128,7 @@ void ContactSolver::setup(Manifold& m) {
     // substeps cannot follow the spring, and a pyramid shivers).
     const double base = (m.b == 0 ? 2.0 : 1.0) * std::min(settings_.contact_hertz, 0.25 / h_);
     for (int x = 0; x < n; ++x) {
-        Point& p = points[x];
+        PassPoint& p = pass[x];
         p.normal_mass = m.K[x][x] > 0.0 ? 1.0 / m.K[x][x] : 0.0;
         const double loaded = std::sqrt(p.normal_impulse * p.normal_mass / (h_ * settings_.stack_depth)) / (2.0 * 3.14159265358979323846);
         p.softness = make_soft(std::clamp(loaded, base, std::max(base, 0.25 / h_)), settings_.damping_ratio, h_);
@@ -266,6 +267,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     slabs(found);
     manifolds_.resize(found.size());
     points_.resize(contacts.size());
+    pass_.resize(contacts.size());
     found_order_.resize(found.size());
     std::vector<std::uint32_t> first_point(found.size());
     std::uint32_t next = 0;
@@ -295,15 +297,17 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             const std::size_t k = f.contact + j;
             const RigidContact& c = contacts[k];
             Point& p = points_[m.first + j];
+            PassPoint& q = pass_[m.first + j];
             p = Point{};
+            q = PassPoint{};
             p.contact = std::uint32_t(k);
             p.r_a = p.r_a0 = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
             p.r_b = p.r_b0 = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
             p.at = c.point;
-            p.s0 = p.s = c.separation;
+            p.s0 = q.s = c.separation;
             if (const RigidContact* before = warm(k)) {
                 // Kept as forces (impulses per second): the substep may have changed since.
-                p.normal_impulse = before->warm_normal * h_;
+                q.normal_impulse = before->warm_normal * h_;
                 m.friction[0] += before->warm_tangent[0] * h_;
                 m.friction[1] += before->warm_tangent[1] * h_;
                 m.twist += before->warm_twist * h_;
@@ -370,8 +374,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         velocity(bodies_[m.a], v_a, w_a);
         velocity(bodies_[m.b], v_b, w_b);
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
-            p.v_n0 = dot(v_a - v_b, m.n) + dot(w_a, p.c_a) - dot(w_b, p.c_b);
+            const PassPoint& q = pass_[k];
+            points_[k].v_n0 = dot(v_a - v_b, m.n) + dot(w_a, q.c_a) - dot(w_b, q.c_b);
         }
     });
 }
@@ -575,11 +579,11 @@ void ContactSolver::separations() {
         const Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
+            const Point& p = points_[k];
             Vec3d d = A.dp - B.dp;
             if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a0 - p.r_a0;
             if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b0 - p.r_b0;
-            p.s = p.s0 + dot(d, m.n);
+            pass_[k].s = p.s0 + dot(d, m.n);
         }
     });
 }
@@ -598,12 +602,13 @@ void ContactSolver::free_offsets() {
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         const double v_lin = dot(A.v_free - B.v_free, m.n);
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
+            const Point& p = points_[k];
+            PassPoint& q = pass_[k];
             Vec3d d = A.dp_free - B.dp_free;
             if (A.kind == Body::Kind::Rigid) d += A.turn_free * p.r_a0 - p.r_a0;
             if (B.kind == Body::Kind::Rigid) d -= B.turn_free * p.r_b0 - p.r_b0;
-            const double closing = (p.s0 + dot(d, m.n) - p.s) * inv_h;
-            p.offset = closing - (v_lin + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b));
+            const double closing = (p.s0 + dot(d, m.n) - q.s) * inv_h;
+            q.offset = closing - (v_lin + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b));
         }
     });
 }
@@ -631,11 +636,10 @@ void ContactSolver::warm_start(Manifold& m) {
     double sum = 0.0;
     Vec3d L_a, L_b;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-        Point& p = points_[k];
+        const PassPoint& p = pass_[k];
         sum += p.normal_impulse;
         L_a += p.c_a * p.normal_impulse;
         L_b += p.c_b * p.normal_impulse;
-        p.total_normal += p.normal_impulse;
     }
     const Vec3d j = m.n * sum + m.t[0] * m.friction[0] + m.t[1] * m.friction[1];
     L_a += m.ft_a[0] * m.friction[0] + m.ft_a[1] * m.friction[1] + m.n * m.twist + m.roll;
@@ -648,8 +652,6 @@ void ContactSolver::warm_start(Manifold& m) {
         B.v -= j * B.inv_mass;
         B.w -= B.inv_I * L_b;
     }
-    m.total_friction[0] += m.friction[0];
-    m.total_friction[1] += m.friction[1];
 }
 
 // One pass over every manifold: its normal impulses together toward each point's target, then
@@ -672,25 +674,32 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     // The relax leaves a point that is still apart alone: it holds what is touching, and the
     // next substep's solve stops that point at its surface (held here, it would stop short
     // of it, and bounce in the air).
+    PassPoint* const P = &pass_[m.first];
     int index[4], count = 0;
     for (int i = 0; i < n; ++i) {
-        if (bias || points_[m.first + std::uint32_t(i)].s <= kSpeculative) index[count++] = i;
+        if (bias || P[i].s <= kSpeculative) index[count++] = i;
     }
-    double target[4] = {0.0, 0.0, 0.0, 0.0};
-    const auto normal_velocity = [&](const Point& p) {
-        return dot(A.v - B.v, m.n) + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
+    // A point's normal velocity: the bodies' relative motion along n (the same for every point
+    // of the manifold), then each side's turn at the point.
+    const auto linear_velocity = [&] { return dot(A.v - B.v, m.n); };
+    const auto normal_velocity = [&](double v_lin, const PassPoint& p) {
+        return v_lin + dot(A.w, p.c_a) - dot(B.w, p.c_b) + (bias ? p.offset : 0.0);
     };
-    for (int k = 0; k < count; ++k) {
-        const Point& p = points_[m.first + std::uint32_t(index[k])];
-        // The solve moves the positions: its normal velocity is the one that closes the gap
-        // (free_offsets); the relax is of velocities alone.
-        const double v_n = normal_velocity(p);
-        if (p.s > kSpeculative) {
-            target[k] = -p.s * inv_h;
-        } else if (bias) {
-            const Softness& soft = p.softness;
-            const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
-            target[k] = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
+    double target[4] = {0.0, 0.0, 0.0, 0.0};  // the relax's: 0
+    if (bias) {
+        const double v_lin = linear_velocity();
+        for (int k = 0; k < count; ++k) {
+            const PassPoint& p = P[index[k]];
+            // The solve moves the positions: its normal velocity is the one that closes the gap
+            // (free_offsets); the relax is of velocities alone.
+            if (p.s > kSpeculative) {
+                target[k] = -p.s * inv_h;
+            } else {
+                const double v_n = normal_velocity(v_lin, p);
+                const Softness& soft = p.softness;
+                const double push = std::min(-soft.bias_rate * p.s, settings_.push_speed);
+                target[k] = (1.0 - soft.mass_scale) * v_n + soft.mass_scale * push - soft.impulse_scale * p.normal_impulse / p.normal_mass;
+            }
         }
     }
     // The normal impulses toward those targets, together; then friction. Friction at a
@@ -698,30 +707,36 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     // velocities again: for a light body (a coin's rim, 5 mm from its centre) by more than
     // the normal impulses just did. Then the two again, until the targets hold (at most
     // kCouplingPasses).
+    // Where every point takes part, K is the manifold's own; otherwise the rows and columns
+    // of those that do.
+    double K_part[4][4];
+    if (count < n) {
+        for (int k = 0; k < count; ++k)
+            for (int j = 0; j < count; ++j) K_part[k][j] = m.K[index[k]][index[j]];
+    }
+    const double (&K)[4][4] = count < n ? K_part : m.K;
     for (int pass = 0; pass < kCouplingPasses; ++pass) {
-        double K[4][4], b[4], x[4], lambda[4];
-        for (int i = 0; i < n; ++i) lambda[i] = points_[m.first + std::uint32_t(i)].normal_impulse;
+        double b[4], x[4], lambda[4];
+        for (int i = 0; i < n; ++i) lambda[i] = P[i].normal_impulse;
+        const double v_lin = linear_velocity();
         for (int k = 0; k < count; ++k) {
-            b[k] = target[k] - normal_velocity(points_[m.first + std::uint32_t(index[k])]);
-            for (int j = 0; j < count; ++j) {
-                K[k][j] = m.K[index[k]][index[j]];
-                b[k] += K[k][j] * lambda[index[j]];
-            }
+            b[k] = target[k] - normal_velocity(v_lin, P[index[k]]);
+            for (int j = 0; j < count; ++j) b[k] += K[k][j] * lambda[index[j]];
         }
         if (count > 0) {
-            solve_block(m.block, count, count == n ? m.K : K, b, x, count == n);
+            solve_block(m.block, count, K, b, x, count == n);
             for (int k = 0; k < count; ++k) lambda[index[k]] = x[k];
         }
-        double sum = 0.0;
+        double sum = 0.0, normal = 0.0;
         Vec3d L_a, L_b;
         for (int i = 0; i < n; ++i) {
-            Point& p = points_[m.first + std::uint32_t(i)];
+            PassPoint& p = P[i];
             const double applied = lambda[i] - p.normal_impulse;
             p.normal_impulse = lambda[i];
-            p.total_normal += applied;
             sum += applied;
             L_a += p.c_a * applied;
             L_b += p.c_b * applied;
+            normal += lambda[i];
         }
         // Eq. 37 for the manifold's impulses at once: P by sum lambda n, L by sum r x lambda n.
         if (m.a != 0) {
@@ -735,12 +750,10 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         // Coulomb friction in impulse form, at the manifold's centre (all its points
         // together, so that a face slides, sticks and lands alike at every corner): the
         // tangential velocity there brought to zero while |lambda_t| <= mu lambda_n allows,
-        // lambda_n the manifold's; and its turn about n, within mu lambda_n times the points'
-        // mean distance from the centre. For a particle (one point) that is Eq. 24's
+        // lambda_n the manifold's (normal); and its turn about n, within mu lambda_n times the
+        // points' mean distance from the centre. For a particle (one point) that is Eq. 24's
         // min(mu_s |F_n|, |F_t|) when it was at rest and Eq. 25's mu_d |F_n| when sliding; one
         // mu between rigid bodies.
-        double normal = 0.0;
-        for (int i = 0; i < n; ++i) normal += points_[m.first + std::uint32_t(i)].normal_impulse;
         // Rolling resistance (not in the addendum: the rolling resistance coefficient,
         // F = C_rr |F_n|, as a torque C_rr r |F_n| on a body rolling on radius r): the two
         // sides' relative turn, rolling or spinning about n, brought to zero by an angular
@@ -775,8 +788,6 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         const double d0 = t[0] - m.friction[0], d1 = t[1] - m.friction[1];
         m.friction[0] = t[0];
         m.friction[1] = t[1];
-        m.total_friction[0] += d0;
-        m.total_friction[1] += d1;
         const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
         if (m.a != 0) {
             A.v += j * A.inv_mass;
@@ -801,9 +812,10 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         // Did friction undo the targets? By what it would take to restore them, against the
         // impulses in play.
         double undone = 0.0;
+        const double v_lin_after = linear_velocity();
         for (int k = 0; k < count; ++k) {
-            const Point& p = points_[m.first + std::uint32_t(index[k])];
-            const double short_of = target[k] - normal_velocity(p);
+            const PassPoint& p = P[index[k]];
+            const double short_of = target[k] - normal_velocity(v_lin_after, p);
             if (short_of > 0.0 || p.normal_impulse > 0.0) undone = std::max(undone, std::abs(short_of) * p.normal_mass);
         }
         if (undone <= 1e-3 * normal + 1e-12) break;
@@ -827,13 +839,14 @@ void ContactSolver::substep(const ContactWorld& world) {
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
+            const PassPoint& q = pass_[k];
             p.bounce = 0.0;
             p.bounce_impulse = 0.0;
-            p.s_start = p.s;
-            if (m.e <= 0.0 || p.s > settings_.touching) continue;
-            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            p.s_start = q.s;
+            if (m.e <= 0.0 || q.s > settings_.touching) continue;
+            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
             if (-vn_start <= settings_.bounce_speed) continue;
-            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b);
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b);
             p.bounce = -vn_start;
             p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
             m.bouncing = true;
@@ -887,7 +900,7 @@ void ContactSolver::substep(const ContactWorld& world) {
     });
     refresh(world);
     separations();
-    parallel(points_.size(), kPointGrain, [&](std::size_t k) { points_[k].s_moved = points_[k].s; });
+    parallel(points_.size(), kPointGrain, [&](std::size_t k) { points_[k].s_moved = pass_[k].s; });
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
     // Under RK4 and explicit Euler, a particle its contact pushed leaves with the velocity it
     // moved with along the normal (its chord), not with what its integrator's end velocity still
@@ -905,14 +918,15 @@ void ContactSolver::substep(const ContactWorld& world) {
             Body &A = bodies_[m.a], &B = bodies_[m.b];
             if (A.kind != Body::Kind::Particle) continue;
             const Point& p = points_[m.first];
+            const PassPoint& q = pass_[m.first];
             const double lag = dot(A.chord, m.n);
-            const bool bounced = p.bounce > 0.0, held = p.s_moved > kSpeculative && p.normal_impulse > 0.0 && lag > 0.0;
+            const bool bounced = p.bounce > 0.0, held = p.s_moved > kSpeculative && q.normal_impulse > 0.0 && lag > 0.0;
             if (!bounced && !held) continue;
             const double j = lag / A.inv_mass;  // Eq. 37 on both sides
             A.v += m.n * lag;
             if (m.b != 0) {
                 B.v -= m.n * (j * B.inv_mass);
-                B.w -= B.inv_I * (p.c_b * j);
+                B.w -= B.inv_I * (q.c_b * j);
             }
         }
     }
@@ -934,21 +948,34 @@ void ContactSolver::substep(const ContactWorld& world) {
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
+            const PassPoint& q = pass_[k];
             if (p.s_start <= settings_.touching || p.s_moved > settings_.touching) continue;
-            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, p.c_a) - dot(B.w_start, p.c_b);
+            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
             // A particle's free velocity as it moved (its chord), not its integrator's end
             // velocity: under RK4 that holds a step of its springs pressing it on, and the speed
             // it met the surface with came out too high, and its bounce.
             const double chord = settings_.particle_chord && A.kind == Body::Kind::Particle ? dot(A.chord, m.n) : 0.0;
-            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, p.c_a) - dot(B.w_free, p.c_b) + chord;
+            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b) + chord;
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
             const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
             const bool closing = vn_start < 0.0 || a_n < 0.0;
             if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::max(p.pending, std::sqrt(speed2));
         }
     });
+    totals();
     forget_bounced();
     store(world);
+}
+
+// What the substep's impulses added to the tick's: each one as it ended (the warm start's and
+// every pass's changes, summed).
+void ContactSolver::totals() {
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].total_normal += pass_[k].normal_impulse;
+        m.total_friction[0] += m.friction[0];
+        m.total_friction[1] += m.friction[1];
+    });
 }
 
 // A manifold that bounced is coming apart: it starts the next substep (or tick) from no impulse.
@@ -958,7 +985,7 @@ void ContactSolver::forget_bounced() {
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         Manifold& m = manifolds_[i];
         if (!m.bounced && !m.bouncing) return;
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].normal_impulse = 0.0;
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].normal_impulse = 0.0;
         m.friction[0] = m.friction[1] = m.twist = 0.0;
         m.roll = Vec3d{};
     });
@@ -1000,7 +1027,8 @@ void ContactSolver::restitute(bool after_positions) {
             const double v_lin = dot(A.v - B.v, m.n);
             for (int i = 0; i < n; ++i) {
                 const Point& p = points_[m.first + std::uint32_t(index[i])];
-                const double v_n = v_lin + dot(A.w, p.c_a) - dot(B.w, p.c_b);
+                const PassPoint& q = pass_[m.first + std::uint32_t(index[i])];
+                const double v_n = v_lin + dot(A.w, q.c_a) - dot(B.w, q.c_b);
                 b[i] = p.bounce_target - v_n;
                 for (int j = 0; j < n; ++j) {
                     K[i][j] = m.K[index[i]][index[j]];
@@ -1010,12 +1038,13 @@ void ContactSolver::restitute(bool after_positions) {
             solve_block(m.block, n, K, b, lambda, n == int(m.count));
             for (int i = 0; i < n; ++i) {
                 Point& p = points_[m.first + std::uint32_t(index[i])];
+                const PassPoint& q = pass_[m.first + std::uint32_t(index[i])];
                 const double applied = lambda[i] - p.bounce_impulse;
                 p.bounce_impulse = lambda[i];
                 A.v += m.n * (applied * A.inv_mass);
-                A.w += A.inv_I * (p.c_a * applied);
+                A.w += A.inv_I * (q.c_a * applied);
                 B.v -= m.n * (applied * B.inv_mass);
-                B.w -= B.inv_I * (p.c_b * applied);
+                B.w -= B.inv_I * (q.c_b * applied);
             }
         }
     }
@@ -1148,18 +1177,19 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             double total = 0.0, last = 0.0;
             for (std::uint32_t q = m.first; q < m.first + m.count; ++q) {
                 total += points_[q].total_normal + points_[q].total_bounce;
-                last += points_[q].normal_impulse;
+                last += pass_[q].normal_impulse;
             }
+            const PassPoint& q = pass_[k];
             const double share = total > 0.0 ? (p.total_normal + p.total_bounce) / total : 1.0 / double(m.count);
-            const double share_last = last > 0.0 ? p.normal_impulse / last : 1.0 / double(m.count);
+            const double share_last = last > 0.0 ? q.normal_impulse / last : 1.0 / double(m.count);
             c.tangent_impulse[0] = m.total_friction[0] * share;
             c.tangent_impulse[1] = m.total_friction[1] * share;
-            c.warm_normal = p.normal_impulse / h_;
+            c.warm_normal = q.normal_impulse / h_;
             c.warm_tangent[0] = m.friction[0] * share_last / h_;
             c.warm_tangent[1] = m.friction[1] * share_last / h_;
             c.warm_twist = m.twist * share_last / h_;
             c.warm_roll = m.roll * (share_last / h_);
-            c.depth = -p.s;
+            c.depth = -q.s;
         }
     });
 }

@@ -151,19 +151,26 @@ struct SolverBody {
     Mat3 turn_free;
 };
 
+// A point as the passes (warm start, solve, relax) see it: all they read and write of it, kept
+// apart from the rest (SolverPoint, at the same index), so that each pass streams through as
+// little memory as it can. In stack:20 (2,870 cubes) the passes read 78,341 points 20 times a
+// tick: 104 bytes of each instead of 312, and a tick on one thread 8% shorter.
+struct PassPoint {
+    Vec3d c_a, c_b;               // r x n: a turn's share of the normal velocity, w . (r x n)
+    double s = 0.0;               // separation now, m
+    double offset = 0.0;          // closing speed of the free step's displacement less its end velocity's, m/s
+    double normal_mass = 0.0;     // 1 / Eq. 38's denominator along n
+    double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
+    Softness softness;            // of the push apart where it overlaps
+};
+
 struct SolverPoint {
     Vec3d r_a0, r_b0;          // anchors from the centres as the contacts were found
     Vec3d at;                  // where the impulses act (world): the point, or between the two anchors now
     Vec3d r_a, r_b;            // from the centres to it (Eq. 38's r)
-    Vec3d c_a, c_b;            // r x n: a turn's share of the normal velocity, w . (r x n)
     double s0 = 0.0;           // separation as the tick began (< 0 overlapping), m
-    double s = 0.0;            // separation now, m
     double s_start = 0.0;      // as the substep began, m
     double s_moved = 0.0;      // once the substep's positions moved, m
-    double offset = 0.0;       // closing speed of the free step's displacement less its end velocity's, m/s
-    double normal_mass = 0.0;  // 1 / Eq. 38's denominator along n
-    Softness softness;         // of the push apart where it overlaps
-    double normal_impulse = 0.0;  // this substep's accumulated impulse (warm-started), N s
     double bounce_impulse = 0.0;  // restitution's, this substep
     double bounce = 0.0;          // > 0: bounces this substep from this speed, m/s
     double bounce_target = 0.0;   // the normal velocity the bounce leaves with
@@ -187,7 +194,7 @@ struct SolverManifold {
     // (this substep's, warm-started; over the tick); the turn about n and its reach.
     Vec3d ft_a[2], ft_b[2];
     double tangent_mass[2] = {0.0, 0.0};
-    double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};
+    double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};  // (the total: totals())
     double twist_mass = 0.0, twist_radius = 0.0, twist = 0.0;
     // Rolling resistance: C_rr r (the largest torque per unit normal force), what stops the
     // two sides' relative turn (the inverse of J_a^-1 + J_b^-1), and its angular impulse.
@@ -227,6 +234,7 @@ private:
     void solve(bool bias);
     void restitute(bool after_positions);
     void forget_bounced();
+    void totals();
     double work(const Body& body, bool shown) const;
     // A manifold as found: its first contact in the tick's list, how many, its two bodies.
     struct FoundManifold {
@@ -248,6 +256,7 @@ private:
     std::vector<Body> bodies_;              // [0]: the static world
     std::vector<Manifold> manifolds_;
     std::vector<Point> points_;
+    std::vector<PassPoint> pass_;            // points_[k]'s part the passes read
     std::vector<std::int32_t> rigid_index_;  // rigid body -> solver body (0: static or not in contact)
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
