@@ -115,11 +115,13 @@ void ContactSolver::setup(Manifold& m) {
     if (m.twist_mass == 0.0) m.twist = 0.0;  // one point (or none turning): no turn to hold
     m.roll_mass = m.roll_arm > 0.0 ? (A.inv_I + B.inv_I).inverse() : Mat3{};
     // K_ij = 1/m_a + 1/m_b + (r_ai x n) . J_a^-1 (r_aj x n) + (r_bi x n) . J_b^-1 (r_bj x n).
+    Vec3d turn_a[4], turn_b[4];  // J^-1 (r_j x n)
+    for (int y = 0; y < n; ++y) {
+        turn_a[y] = A.inv_I * pass[y].c_a;
+        turn_b[y] = B.inv_I * pass[y].c_b;
+    }
     for (int x = 0; x < n; ++x) {
-        for (int y = 0; y < n; ++y) {
-            m.K[x][y] = A.inv_mass + B.inv_mass + dot(pass[x].c_a, A.inv_I * pass[y].c_a) +
-                        dot(pass[x].c_b, B.inv_I * pass[y].c_b);
-        }
+        for (int y = 0; y < n; ++y) m.K[x][y] = A.inv_mass + B.inv_mass + dot(pass[x].c_a, turn_a[y]) + dot(pass[x].c_b, turn_b[y]);
     }
     // The push apart is a spring (contact_hertz, twice that against the static world, which
     // moves for no one), stiffer where the point carries a load: a spring holding an impulse lambda a
