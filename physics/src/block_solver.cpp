@@ -126,6 +126,47 @@ void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], Bloc
     }
 }
 
+namespace {
+
+// All N points pushing, through the inverse prepared for the tick: x and true when that fits
+// (solve_block). N known when compiled, so that the loops unroll: the same operations in the
+// same order as for any n.
+template <int N>
+bool solve_all(const BlockInverse& block, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+    double c[4] = {b[0], b[1], b[2], b[3]};
+    if (block.singular) {
+        double along = 0.0;
+        for (int i = 0; i < N; ++i) along += c[i] * block.z[i];
+        for (int i = 0; i < N; ++i) c[i] -= along * block.z[i];
+    }
+    double y[4];
+    for (int r = 0; r < N; ++r) {
+        double sum = 0.0;
+        for (int k = 0; k < N; ++k) sum += block.K_solve[r][k] * c[k];
+        y[r] = sum;
+    }
+    // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
+    // corners the answer is the least-squares one: where the targets are not those of one
+    // motion of the face (corners at different gaps closing as far as each may), some
+    // corner would be left short of its target, and a set of three is the answer instead.
+    double largest = 0.0, scale = 0.0;
+    for (int i = 0; i < N; ++i) {
+        largest = std::max(largest, y[i]);
+        scale = std::max(scale, std::abs(b[i]));
+    }
+    bool fits_all = true;
+    for (int i = 0; i < N; ++i) {
+        double w = -b[i];
+        for (int j = 0; j < N; ++j) w += K[i][j] * std::max(y[j], 0.0);
+        fits_all = fits_all && y[i] >= -1e-12 * largest && std::abs(w) <= 1e-6 * scale + 1e-12;
+    }
+    if (!fits_all) return false;
+    for (int i = 0; i < N; ++i) x[i] = std::max(y[i], 0.0);
+    return true;
+}
+
+}  // namespace
+
 // The normal impulses x >= 0 of a manifold's n <= 4 points acting together. K is their
 // coupling; (K x)_i - b_i is point i's normal velocity above its target with impulses x, and it
 // must be zero where the point pushes (x_i > 0) and may be more where it does not (x_i = 0): a
@@ -151,37 +192,15 @@ void solve_block(BlockInverse& block, int n, const double (&K)[4][4], const doub
     };
     const unsigned full = (1u << n) - 1u;
     if (all_points) {
-        double c[4] = {b[0], b[1], b[2], b[3]};
-        if (block.singular) {
-            double along = 0.0;
-            for (int i = 0; i < n; ++i) along += c[i] * block.z[i];
-            for (int i = 0; i < n; ++i) c[i] -= along * block.z[i];
+        bool fits_all = false;
+        switch (n) {
+            case 1: fits_all = solve_all<1>(block, K, b, x); break;
+            case 2: fits_all = solve_all<2>(block, K, b, x); break;
+            case 3: fits_all = solve_all<3>(block, K, b, x); break;
+            case 4: fits_all = solve_all<4>(block, K, b, x); break;
+            default: break;
         }
-        double y[4];
-        for (int r = 0; r < n; ++r) {
-            double sum = 0.0;
-            for (int k = 0; k < n; ++k) sum += block.K_solve[r][k] * c[k];
-            y[r] = sum;
-        }
-        // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
-        // corners the answer is the least-squares one: where the targets are not those of one
-        // motion of the face (corners at different gaps closing as far as each may), some
-        // corner would be left short of its target, and a set of three is the answer instead.
-        double largest = 0.0, scale = 0.0;
-        for (int i = 0; i < n; ++i) {
-            largest = std::max(largest, y[i]);
-            scale = std::max(scale, std::abs(b[i]));
-        }
-        bool fits_all = true;
-        for (int i = 0; i < n; ++i) {
-            double w = -b[i];
-            for (int j = 0; j < n; ++j) w += K[i][j] * std::max(y[j], 0.0);
-            fits_all = fits_all && y[i] >= -1e-12 * largest && std::abs(w) <= 1e-6 * scale + 1e-12;
-        }
-        if (fits_all) {
-            for (int i = 0; i < n; ++i) x[i] = std::max(y[i], 0.0);
-            return;
-        }
+        if (fits_all) return;
     }
     // No point pushes (all come apart): the commonest other answer.
     bool apart = true;
