@@ -575,17 +575,20 @@ void ContactSolver::refresh(const ContactWorld& world) {
 }
 
 // Each point's separation where the bodies are: as the tick began, moved on by each body's
-// move and turn since (the anchors turn with their bodies).
-void ContactSolver::separations() {
+// move and turn since (the anchors turn with their bodies). Kept as the substep's start
+// (s_start) or, once its positions `moved`, as s_moved.
+void ContactSolver::separations(bool moved) {
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         const Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            const Point& p = points_[k];
+            Point& p = points_[k];
             Vec3d d = A.dp - B.dp;
             if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a0 - p.r_a0;
             if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b0 - p.r_b0;
-            pass_[k].s = p.s0 + dot(d, m.n);
+            const double s = p.s0 + dot(d, m.n);
+            pass_[k].s = s;
+            (moved ? p.s_moved : p.s_start) = s;
         }
     });
 }
@@ -828,7 +831,7 @@ void ContactSolver::substep(const ContactWorld& world) {
     if (manifolds_.empty()) return;
     const double h = h_, inv_h = 1.0 / h;
     load(world);
-    separations();
+    separations(false);
     free_offsets();
 
     // Which points bounce before the positions move: those touching as the substep begins and
@@ -838,14 +841,14 @@ void ContactSolver::substep(const ContactWorld& world) {
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         Manifold& m = manifolds_[i];
         m.bouncing = false;
+        if (m.e <= 0.0) return;  // never bounces: its bounces stay 0
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
             const PassPoint& q = pass_[k];
             p.bounce = 0.0;
             p.bounce_impulse = 0.0;
-            p.s_start = q.s;
-            if (m.e <= 0.0 || q.s > settings_.touching) continue;
+            if (q.s > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
             if (-vn_start <= settings_.bounce_speed) continue;
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b);
@@ -901,8 +904,7 @@ void ContactSolver::substep(const ContactWorld& world) {
         }
     });
     refresh(world);
-    separations();
-    parallel(points_.size(), kPointGrain, [&](std::size_t k) { points_[k].s_moved = pass_[k].s; });
+    separations(true);
     for (int pass = 0; pass < settings_.relax_passes; ++pass) solve(false);
     // Under RK4 and explicit Euler, a particle its contact pushed leaves with the velocity it
     // moved with along the normal (its chord), not with what its integrator's end velocity still
@@ -1094,7 +1096,12 @@ void ContactSolver::restitute(bool after_positions) {
             energy_.total += shown;
         }
     }
-    for (Point& p : points_) p.total_bounce += p.bounce_impulse;
+    // Only a bouncing manifold's points have a bounce impulse.
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
+        if (!m.bouncing) return;
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].total_bounce += points_[k].bounce_impulse;
+    });
 }
 
 // The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's

@@ -229,7 +229,7 @@ private:
     void load(const ContactWorld& world);
     void refresh(const ContactWorld& world);
     void store(const ContactWorld& world);
-    void separations();
+    void separations(bool moved);
     void free_offsets();
     void solve(bool bias);
     void restitute(bool after_positions);
