@@ -976,7 +976,7 @@ void ContactSolver::substep(const ContactWorld& world) {
 void ContactSolver::totals() {
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         Manifold& m = manifolds_[i];
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].total_normal += pass_[k].normal_impulse;
+        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].total_normal += pass_[k].normal_impulse;
         m.total_friction[0] += m.friction[0];
         m.total_friction[1] += m.friction[1];
     });
@@ -1177,19 +1177,19 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
         const Manifold& m = manifolds_[i];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             const Point& p = points_[k];
+            const PassPoint& q = pass_[k];
             RigidContact& c = contacts[p.contact];
             c.approach_speed = -p.v_n0;
-            c.normal_impulse = p.total_normal + p.total_bounce;
+            c.normal_impulse = q.total_normal + p.total_bounce;
             c.bounce_impulse = p.total_bounce;
             // The manifold's friction shared by the points: as their normal impulses over the
             // tick (evenly when none), and its last substep's the same way for warm starting.
             double total = 0.0, last = 0.0;
-            for (std::uint32_t q = m.first; q < m.first + m.count; ++q) {
-                total += points_[q].total_normal + points_[q].total_bounce;
-                last += pass_[q].normal_impulse;
+            for (std::uint32_t j = m.first; j < m.first + m.count; ++j) {
+                total += pass_[j].total_normal + points_[j].total_bounce;
+                last += pass_[j].normal_impulse;
             }
-            const PassPoint& q = pass_[k];
-            const double share = total > 0.0 ? (p.total_normal + p.total_bounce) / total : 1.0 / double(m.count);
+            const double share = total > 0.0 ? (q.total_normal + p.total_bounce) / total : 1.0 / double(m.count);
             const double share_last = last > 0.0 ? q.normal_impulse / last : 1.0 / double(m.count);
             c.tangent_impulse[0] = m.total_friction[0] * share;
             c.tangent_impulse[1] = m.total_friction[1] * share;
