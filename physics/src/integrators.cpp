@@ -264,7 +264,8 @@ Quat free_turn(const RigidBody& body, const Quat& q0, const Vec3d& L, double h, 
         if (!(I[k] > 0.0)) return;
         const double angle = t * pi[k] / I[k];
         if (angle == 0.0) return;
-        const double s = portable::sin(0.5 * angle), c = portable::cos(0.5 * angle);
+        double s = 0.0, c = 0.0;
+        portable::sin_cos(0.5 * angle, s, c);
         const Vec3d e = Vec3d{E.m[0][k], E.m[1][k], E.m[2][k]} * s;
         q = q * Quat{c, e.x, e.y, e.z};
         // pi' = Rot_k(angle)^T pi, with sin and cos of the whole angle from the half angle's.

@@ -118,6 +118,22 @@ double cos(double x) {
     }
 }
 
+void sin_cos(double x, double& s, double& c) {
+    if (!std::isfinite(x)) {
+        s = c = kNaN;
+        return;
+    }
+    double r = 0.0, e = 0.0;
+    const int quadrant = reduce(x, r, e);
+    const double sin_r = sin_reduced(r, e), cos_r = cos_reduced(r, e);
+    switch (quadrant) {
+        case 0: s = sin_r; c = cos_r; break;
+        case 1: s = cos_r; c = -sin_r; break;
+        case 2: s = -sin_r; c = -cos_r; break;
+        default: s = -cos_r; c = sin_r; break;
+    }
+}
+
 double tan(double x) {
     if (!std::isfinite(x)) return kNaN;
     double r = 0.0, c = 0.0;

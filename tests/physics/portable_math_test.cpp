@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "physics/portable_math.h"
 
@@ -52,6 +54,31 @@ TEST(PortableMath, TanAcosHypotCbrtWithinTheirBounds) {
               1.5);
     EXPECT_LT(worst_error(0.0, 1e4, [](double x) { return portable::cbrt(x); }, [](long double x) { return cbrtl(x); }), 1.0);
     EXPECT_LT(worst_error(-1e-3, 1e-3, [](double x) { return portable::cbrt(x); }, [](long double x) { return cbrtl(x); }), 1.0);
+}
+
+// sin_cos is the two from one reduction: the same bits as each alone, in every quadrant, at
+// the edges of the reduction's range and beyond, and NaN where they are.
+TEST(PortableMath, SinCosIsSinAndCosBitForBit) {
+    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> near(-10.0, 10.0), far(-2e6, 2e6), tiny(-1e-6, 1e-6);
+    std::vector<double> xs = {0.0, -0.0, 0.7853981633974483, 1.5707963267948966, 3.141592653589793, -4.71238898038469,
+                              1e-300, -5e-324, 1e6, 3e7, INFINITY, -INFINITY, NAN};
+    for (int i = 0; i < 100'000; ++i) xs.insert(xs.end(), {near(random), far(random), tiny(random)});
+    int differing = 0;
+    for (const double x : xs) {
+        double s = 0.0, c = 0.0;
+        portable::sin_cos(x, s, c);
+        const double s1 = portable::sin(x), c1 = portable::cos(x);
+        if (std::isnan(x)) {
+            differing += !(std::isnan(s) && std::isnan(c));
+        } else if (std::isinf(x)) {
+            differing += !(std::isnan(s) && std::isnan(c) && std::isnan(s1) && std::isnan(c1));
+        } else {
+            differing += !(same_bits(s, s1) && same_bits(c, c1));
+        }
+    }
+    EXPECT_EQ(differing, 0) << "of " << xs.size() << " arguments";
 }
 
 TEST(PortableMath, ExactValuesAndEdges) {

@@ -23,6 +23,8 @@ namespace softbody::portable {
 // same bits everywhere, with an absolute error growing as |x| ulp(x).
 double sin(double x);
 double cos(double x);
+// sin x and cos x at once, from one argument reduction: the same bits as the two above.
+void sin_cos(double x, double& s, double& c);
 double tan(double x);
 double acos(double x);  // [-1, 1] -> [0, pi]; NaN outside
 double hypot(double x, double y);

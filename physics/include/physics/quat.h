@@ -19,8 +19,9 @@ struct Quat {
     static constexpr Quat pure(const Vec3d& v) { return {0.0, v.x, v.y, v.z}; }
     // A turn of `angle` radians about the unit vector `axis`.
     static Quat from_axis_angle(const Vec3d& axis, double angle) {
-        const double s = portable::sin(0.5 * angle);
-        return {portable::cos(0.5 * angle), axis.x * s, axis.y * s, axis.z * s};
+        double s = 0.0, c = 0.0;
+        portable::sin_cos(0.5 * angle, s, c);
+        return {c, axis.x * s, axis.y * s, axis.z * s};
     }
     // Turns about x, then y, then z, by the given degrees (the soft body's `rotation` key).
     static Quat from_degrees_xyz(const Vec3d& degrees) {
