@@ -54,7 +54,8 @@ std::vector<std::pair<Key, std::uint32_t>> sorted_keys(const std::vector<RigidCo
 // inertia as it was found has it found again (load()).
 constexpr double kStaleSpeed = 1e-4;
 
-// Passes of a manifold's normal impulses and its friction in turn, at most (solve()).
+// Passes of a manifold's normal impulses and its friction in turn in the solve, at most; the
+// relax makes one (solve_manifold).
 constexpr int kCouplingPasses = 8;
 
 // A point closer than this (m) touches: pushed apart softly where it overlaps (solve()).
@@ -742,7 +743,10 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     // point away from the centre of mass turns the body, and so changes the normal
     // velocities again: for a light body (a coin's rim, 5 mm from its centre) by more than
     // the normal impulses just did. Then the two again, until the targets hold (at most
-    // kCouplingPasses).
+    // kCouplingPasses): the solve's must, before the positions move. The relax makes one
+    // pass a visit: it is itself passes over every manifold (relax_passes), and the next takes
+    // up what friction undid (passes again within the visit cost a resting pyramid a tenth
+    // of its instructions and left its depths and drift as they were).
     // Where every point takes part, K is the manifold's own; otherwise the rows and columns
     // of those that do.
     double K_part[4][4];
@@ -751,7 +755,8 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             for (int j = 0; j < count; ++j) K_part[k][j] = m.K[index[k]][index[j]];
     }
     const double (&K)[4][4] = count < n ? K_part : m.K;
-    for (int pass = 0; pass < kCouplingPasses; ++pass) {
+    const int coupling_passes = bias ? kCouplingPasses : 1;
+    for (int pass = 0; pass < coupling_passes; ++pass) {
         double b[4], x[4], lambda[4];
         for (int i = 0; i < n; ++i) lambda[i] = P[i].normal_impulse;
         const double v_lin = linear_velocity();
@@ -845,6 +850,7 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
                 B.w -= B.inv_I * (m.n * d);
             }
         }
+        if (pass + 1 == coupling_passes) break;
         // Did friction undo the targets? By what it would take to restore them, against the
         // impulses in play.
         double undone = 0.0;
