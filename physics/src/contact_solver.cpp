@@ -745,8 +745,8 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     // the normal impulses just did. Then the two again, until the targets hold (at most
     // kCouplingPasses): the solve's must, before the positions move. The relax makes one
     // pass a visit: it is itself passes over every manifold (relax_passes), and the next takes
-    // up what friction undid (passes again within the visit cost a resting pyramid a tenth
-    // of its instructions and left its depths and drift as they were).
+    // up what friction undid (passes again within the visit cost a pyramid of touching cubes
+    // a tenth of its instructions; without them its 20 layers stand 0.2 mm deeper).
     // Where every point takes part, K is the manifold's own; otherwise the rows and columns
     // of those that do.
     double K_part[4][4];
