@@ -302,6 +302,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     manifolds_.resize(found.size());
     points_.resize(contacts.size());
     pass_.resize(contacts.size());
+    gap_.resize(contacts.size());
     found_order_.resize(found.size());
     std::vector<std::uint32_t> first_point(found.size());
     std::uint32_t next = 0;
@@ -332,13 +333,15 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             const RigidContact& c = contacts[k];
             Point& p = points_[m.first + j];
             PassPoint& q = pass_[m.first + j];
+            GapPoint& g = gap_[m.first + j];
             p = Point{};
             q = PassPoint{};
+            g = GapPoint{};
             p.contact = std::uint32_t(k);
-            p.r_a = p.r_a0 = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
-            p.r_b = p.r_b0 = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
+            p.r_a = g.r_a0 = A.kind == Body::Kind::Rigid ? c.arm_a : Vec3d{};
+            p.r_b = g.r_b0 = B.kind == Body::Kind::Rigid ? c.arm_b : Vec3d{};
             p.at = c.point;
-            p.s0 = q.s = c.separation;
+            g.s0 = q.s = c.separation;
             if (const RigidContact* before = warm(k)) {
                 // Kept as forces (impulses per second): the substep may have changed since.
                 q.normal_impulse = before->warm_normal * h_;
@@ -597,8 +600,9 @@ void ContactSolver::refresh(const ContactWorld& world) {
         };
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
-            const Vec3d on_a = anchor(A, p.r_a0);
-            p.at = B.kind == Body::Kind::Static ? on_a : (on_a + anchor(B, p.r_b0)) * 0.5;
+            const GapPoint& g = gap_[k];
+            const Vec3d on_a = anchor(A, g.r_a0);
+            p.at = B.kind == Body::Kind::Static ? on_a : (on_a + anchor(B, g.r_b0)) * 0.5;
             p.r_a = A.kind == Body::Kind::Rigid ? p.at - A.x : Vec3d{};
             p.r_b = B.kind == Body::Kind::Rigid ? p.at - B.x : Vec3d{};
         }
@@ -609,42 +613,37 @@ void ContactSolver::refresh(const ContactWorld& world) {
 // Each point's separation where the bodies are: as the tick began, moved on by each body's
 // move and turn since (the anchors turn with their bodies). Kept as the substep's start
 // (s_start) or, once its positions `moved`, as s_moved.
+//
+// At the substep's start, in the same sweep: how far each point's gap closes in the free step,
+// against what its normal velocity at the step's end says (the solve takes the difference as
+// an offset to that velocity). The solver's velocities are the free step's end; a point on a
+// body turning fast follows an arc, not that straight line: a corner 1.5 m out at 55 rad/s is
+// off by a centripetal 1/2 w^2 r h^2 = 0.3 mm in a substep of 0.37 ms, enough to sink the corner
+// a little deeper every substep, and the push out of it would spin the body up. With the free
+// step's own displacement the gap closes as far as the motion actually takes it.
 void ContactSolver::separations(bool moved) {
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        const Manifold& m = manifolds_[i];
-        const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
-            Vec3d d = A.dp - B.dp;
-            if (A.kind == Body::Kind::Rigid) d += A.turn * p.r_a0 - p.r_a0;
-            if (B.kind == Body::Kind::Rigid) d -= B.turn * p.r_b0 - p.r_b0;
-            const double s = p.s0 + dot(d, m.n);
-            pass_[k].s = s;
-            (moved ? p.s_moved : p.s_start) = s;
-        }
-    });
-}
-
-// How far each point's gap closes in the free step, against what its normal velocity at the
-// step's end says (the solve takes the difference as an offset to that velocity). The solver's
-// velocities are the free step's end; a point on a body turning fast follows an arc, not that
-// straight line: a corner 1.5 m out at 55 rad/s is off by a centripetal 1/2 w^2 r h^2 = 0.3 mm
-// in a substep of 0.37 ms, enough to sink the corner a little deeper every substep, and the push
-// out of it would spin the body up. With the free step's own displacement the gap closes as far
-// as the motion actually takes it.
-void ContactSolver::free_offsets() {
     const double inv_h = 1.0 / h_;
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         const Manifold& m = manifolds_[i];
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        const double v_lin = dot(A.v_free - B.v_free, m.n);
+        const double v_lin = moved ? 0.0 : dot(A.v_free - B.v_free, m.n);
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            const Point& p = points_[k];
+            GapPoint& g = gap_[k];
             PassPoint& q = pass_[k];
-            Vec3d d = A.dp_free - B.dp_free;
-            if (A.kind == Body::Kind::Rigid) d += A.turn_free * p.r_a0 - p.r_a0;
-            if (B.kind == Body::Kind::Rigid) d -= B.turn_free * p.r_b0 - p.r_b0;
-            const double closing = (p.s0 + dot(d, m.n) - q.s) * inv_h;
+            Vec3d d = A.dp - B.dp;
+            if (A.kind == Body::Kind::Rigid) d += A.turn * g.r_a0 - g.r_a0;
+            if (B.kind == Body::Kind::Rigid) d -= B.turn * g.r_b0 - g.r_b0;
+            const double s = g.s0 + dot(d, m.n);
+            q.s = s;
+            if (moved) {
+                g.s_moved = s;
+                continue;
+            }
+            g.s_start = s;
+            Vec3d d_free = A.dp_free - B.dp_free;
+            if (A.kind == Body::Kind::Rigid) d_free += A.turn_free * g.r_a0 - g.r_a0;
+            if (B.kind == Body::Kind::Rigid) d_free -= B.turn_free * g.r_b0 - g.r_b0;
+            const double closing = (g.s0 + dot(d_free, m.n) - s) * inv_h;
             q.offset = closing - (v_lin + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b));
         }
     });
@@ -728,7 +727,7 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         for (int k = 0; k < count; ++k) {
             const PassPoint& p = P[index[k]];
             // The solve moves the positions: its normal velocity is the one that closes the gap
-            // (free_offsets); the relax is of velocities alone.
+            // (separations); the relax is of velocities alone.
             if (p.s > kSpeculative) {
                 target[k] = -p.s * inv_h;
             } else {
@@ -869,7 +868,6 @@ void ContactSolver::substep(const ContactWorld& world) {
     const double h = h_, inv_h = 1.0 / h;
     load(world);
     separations(false);
-    free_offsets();
 
     // Which points bounce before the positions move: those touching as the substep begins and
     // coming in faster than a resting contact does. The bounce leaves at -e times that speed,
@@ -877,18 +875,20 @@ void ContactSolver::substep(const ContactWorld& world) {
     std::atomic<bool> any_bouncing{false};
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         Manifold& m = manifolds_[i];
+        // Only a manifold that was bouncing has points with a bounce to clear.
+        if (m.bouncing) {
+            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce = points_[k].bounce_impulse = 0.0;
+        }
         m.bouncing = false;
         if (m.e <= 0.0) return;  // never bounces: its bounces stay 0
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
             const PassPoint& q = pass_[k];
-            p.bounce = 0.0;
-            p.bounce_impulse = 0.0;
             if (q.s > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
             if (-vn_start <= settings_.bounce_speed) continue;
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b);
+            Point& p = points_[k];
             p.bounce = -vn_start;
             p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
             m.bouncing = true;
@@ -961,7 +961,7 @@ void ContactSolver::substep(const ContactWorld& world) {
             const Point& p = points_[m.first];
             const PassPoint& q = pass_[m.first];
             const double lag = dot(A.chord, m.n);
-            const bool bounced = p.bounce > 0.0, held = p.s_moved > kSpeculative && q.normal_impulse > 0.0 && lag > 0.0;
+            const bool bounced = p.bounce > 0.0, held = gap_[m.first].s_moved > kSpeculative && q.normal_impulse > 0.0 && lag > 0.0;
             if (!bounced && !held) continue;
             const double j = lag / A.inv_mass;  // Eq. 37 on both sides
             A.v += m.n * lag;
@@ -988,9 +988,9 @@ void ContactSolver::substep(const ContactWorld& world) {
         if (m.e <= 0.0) return;
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            Point& p = points_[k];
+            const GapPoint& g = gap_[k];
+            if (g.s_start <= settings_.touching || g.s_moved > settings_.touching) continue;
             const PassPoint& q = pass_[k];
-            if (p.s_start <= settings_.touching || p.s_moved > settings_.touching) continue;
             const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
             // A particle's free velocity as it moved (its chord), not its integrator's end
             // velocity: under RK4 that holds a step of its springs pressing it on, and the speed
@@ -998,9 +998,12 @@ void ContactSolver::substep(const ContactWorld& world) {
             const double chord = settings_.particle_chord && A.kind == Body::Kind::Particle ? dot(A.chord, m.n) : 0.0;
             const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b) + chord;
             const double a_n = (vn_free - vn_start) * inv_h;  // toward the surface: < 0
-            const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * p.s_start;
+            const double speed2 = vn_start * vn_start - 2.0 * std::min(a_n, 0.0) * g.s_start;
             const bool closing = vn_start < 0.0 || a_n < 0.0;
-            if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) p.pending = std::max(p.pending, std::sqrt(speed2));
+            if (closing && speed2 > settings_.bounce_speed * settings_.bounce_speed) {
+                Point& p = points_[k];
+                p.pending = std::max(p.pending, std::sqrt(speed2));
+            }
         }
     });
     totals();
