@@ -93,7 +93,22 @@ void World::wake_all() {
 bool World::wake_touched_islands() {
     if (sleep_.sleeping == 0) return false;
     std::vector<std::uint32_t> islands;
+    const double dt = settings_.dt;
     for (const RigidContact& c : contacts_) {
+        const bool rigid_pair = c.soft < 0 && c.b >= 0 && !rigid_[c.a].fixed && !rigid_[std::size_t(c.b)].fixed;
+        if (rigid_pair && asleep_[c.a] != asleep_[std::size_t(c.b)]) {
+            // Between two rigid bodies, one awake: how far its point comes at the other in the
+            // tick, from its velocity as the tick begins and the weight along the normal (n
+            // points out of b toward a).
+            const bool a_awake = !asleep_[c.a];
+            const Vec3d arm = a_awake ? c.arm_a : c.arm_b;
+            const RigidMotion m = rigid_motion(a_awake ? c.a : std::size_t(c.b));
+            const double toward = a_awake ? -1.0 : 1.0;  // the awake side closes the gap moving along toward * n
+            const double approach = toward * dot(m.v + cross(m.omega, arm), c.normal);
+            const double fall = toward * dot(Vec3d(settings_.gravity), c.normal);
+            const double reach = std::max(approach, 0.0) * dt + 0.5 * std::max(fall, 0.0) * dt * dt;
+            if (c.separation - reach > kSleepTouch) continue;  // it stays asleep: static to the awake one
+        }
         if (c.soft < 0 && asleep_[c.a]) islands.push_back(sleep_.island[c.a]);
         if (c.b >= 0 && asleep_[std::size_t(c.b)] && (c.soft < 0 || particle_coming(soft_, c))) islands.push_back(sleep_.island[std::size_t(c.b)]);
     }
@@ -165,7 +180,7 @@ void World::update_sleep() {
         if (c.soft >= 0) {
             if (c.b >= 0 && particle_coming(soft_, c)) held[std::size_t(c.b)] = 1;  // a particle coming at it
         } else if (dynamic(c.b)) {
-            islands.unite(c.a, std::uint32_t(c.b));
+            if (c.depth >= -kSleepTouch || c.normal_impulse > 0.0) islands.unite(c.a, std::uint32_t(c.b));
         } else {
             supported[c.a] = 1;  // the ground, or a fixed body
         }

@@ -14,6 +14,9 @@ namespace softbody::test {
 namespace {
 
 constexpr std::uint64_t kTicksPerSecond = 50;  // dt 0.02 s, every scene here
+// m: two bodies closer than this touch (sleep.h: they are in one island, and a sleeping one
+// wakes the tick an awake one touches it).
+constexpr double kTouching = 1e-4;
 
 // A body's fastest point: |v| + |w| r (the bench's "moving", app/soundness.h).
 double fastest_point(const World& world, std::size_t b) {
@@ -134,13 +137,14 @@ TEST(Sleep, SettledPileSleepsAndAThrownBallWakesWhatItTouchesThenItSleepsAgain) 
     world = pile.world.get();
     EXPECT_FALSE(world->rigid_asleep(ball));
     for (std::size_t b = 0; b < asleep_before.size(); ++b) EXPECT_EQ(world->rigid_asleep(b), asleep_before[b]) << b;
-    // Every body the ball touches is awake in the tick it does, and had been asleep: it woke.
+    // Every body the ball touches (a contact closer than kTouching as the tick began) is awake
+    // in the tick it does, and had been asleep: it woke.
     std::set<std::size_t> touched, woke;
     for (std::uint64_t t = 0; t < 10 * kTicksPerSecond; ++t) {
         world->tick();
         ASSERT_EQ(world->status(), Status::Ok) << world->divergence();
         for (const RigidContact& c : world->contacts()) {
-            if (c.soft >= 0) continue;
+            if (c.soft >= 0 || c.separation > kTouching) continue;
             const std::int64_t other = c.a == ball ? c.b : std::int64_t(c.b) == std::int64_t(ball) ? std::int64_t(c.a) : -1;
             if (other < 0 || world->rigid_body(std::size_t(other)).fixed) continue;
             touched.insert(std::size_t(other));
@@ -278,6 +282,54 @@ TEST(Sleep, BodyDriftingThroughEmptySpaceNeverSleeps) {
     EXPECT_FALSE(world.rigid_asleep(0));
     EXPECT_GE(world.rigid_rest_time(0), 4.9);  // slow all along: only leaning on nothing keeps it awake
     EXPECT_NEAR(position_of(world, 0).x, 0.025, 1e-9);
+}
+
+// A box resting 3 mm from a ball that spins in place for ever (about the vertical, on one
+// point: nothing holds that turn back) is within the ball's reach, but they do not touch: they
+// are two islands, and the box sleeps while the ball spins on. A ball rolling into the box from
+// 20 cm away at 0.2 m/s wakes it the tick they touch, and pushes it a little.
+TEST(Sleep, ABodyWithinReachOfARestlessOneSleepsUntilItIsTouched) {
+    for (const bool rolling : {false, true}) {
+        const double gap = rolling ? 0.2 : 0.003, v = rolling ? 0.2 : 0.0;
+        World world = World(parse_scene(
+            "{\"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 0, 0.1],"
+            " \"velocity\": [" + std::to_string(v) + ", 0, 0], \"angular_velocity\": [0, " + std::to_string(v / 0.1) + ", " +
+                (rolling ? "0" : "10") + "]},"
+            " {\"name\": \"box\", \"size\": [0.2, 0.2, 0.2], \"position\": [" + std::to_string(0.2 + gap) + ", 0, 0.1]}]}",
+            "test.json"));
+        bool within_reach = false, touched = false, woke_on_touch = true;
+        for (std::uint64_t t = 0; t < 3 * kTicksPerSecond; ++t) {
+            world.tick();
+            ASSERT_EQ(world.status(), Status::Ok) << world.divergence();
+            for (const RigidContact& c : world.contacts()) {
+                if (c.soft >= 0 || c.b < 0 || std::min<std::int64_t>(c.a, c.b) != 0 || std::max<std::int64_t>(c.a, c.b) != 1) continue;
+                within_reach = true;
+                if (c.separation <= kTouching) {
+                    touched = true;
+                    woke_on_touch = woke_on_touch && !world.rigid_asleep(1);
+                }
+            }
+            if (!rolling && t + 1 == kTicksPerSecond) {
+                EXPECT_TRUE(world.rigid_asleep(1)) << "the box beside the spinning ball sleeps within a second";
+            }
+            if (rolling && t + 1 == kTicksPerSecond / 2 + 5) {
+                EXPECT_TRUE(world.rigid_asleep(1)) << "the box sleeps before the ball arrives";
+            }
+        }
+        if (!rolling) {
+            EXPECT_FALSE(world.rigid_asleep(0)) << "the ball never rests";
+            EXPECT_TRUE(within_reach) << "the ball and the box are within reach of each other";
+            EXPECT_FALSE(touched) << "and never touch";
+            EXPECT_TRUE(world.rigid_asleep(1));
+            EXPECT_NEAR(position_of(world, 1).x, 0.203, 1e-6);
+        } else {
+            EXPECT_TRUE(touched) << "the ball reaches the box";
+            EXPECT_TRUE(woke_on_touch) << "and the box is awake every tick they touch";
+            // The two share the ball's momentum (about 7 cm/s), and friction stops the box
+            // within half a millimetre.
+            EXPECT_GT(position_of(world, 1).x, 0.4 + 1e-4) << "the box is pushed along";
+        }
+    }
 }
 
 // A resting body twitched for a moment (as one in a loaded pile is now and then, when a contact
