@@ -78,8 +78,8 @@ inline constexpr double kTwitchSpeed = 4.0 * kSleepSpeed;
 // m: two bodies closer than this touch: one island, and a sleeping one wakes when an awake one
 // touches it. A tenth of a millimetre: resting contacts stand overlapping (up to 2 mm, above),
 // and a gap of a few millimetres between neighbours in a pile is not a touch. Measured in
-// bin:1000 after 10 s: 760 bodies kept awake by islands of every contact within reach, 629 by
-// those closer than 2 mm, 434 by those closer than 0.1 mm (physics/README.md, "Islands and
+// bin:1000 after 10 s: 819 bodies kept awake by islands of every contact within reach, 708 by
+// those closer than 2 mm, 512 by those closer than 0.1 mm (physics/README.md, "Islands and
 // sleeping").
 inline constexpr double kSleepTouch = 1e-4;
 
