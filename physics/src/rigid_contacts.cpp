@@ -81,6 +81,21 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
     const std::size_t n = bodies.size();
     if (n < 2) return;
     const double g = length(Vec3d(world.gravity));
+    // Two bodies each asleep or fixed are not paired at all (they are not tested: sleep.h). When
+    // every body is, there is nothing to find: a pile or stack asleep costs no broad phase (in
+    // stack:10 asleep, its boxes and sweep were 71% of a tick's instructions).
+    scratch.quiet.resize(n);
+    bool all_quiet = true;
+    for (std::size_t b = 0; b < n; ++b) {
+        scratch.quiet[b] = bodies[b].fixed || (!asleep.empty() && asleep[b]) ? 1 : 0;
+        all_quiet = all_quiet && scratch.quiet[b];
+    }
+    if (all_quiet) {
+        scratch.pairs.clear();
+        scratch.cache.pairs.clear();  // as a find that tested no pair leaves it
+        scratch.cache.points.clear();
+        return;
+    }
     scratch.boxes.resize(n);
     scratch.margins.resize(n);
     for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -92,9 +107,6 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
             scratch.boxes[b] = world_aabb(shapes[b], pose_of(s), scratch.margins[b]);
         }
     });
-    // Two bodies each asleep or fixed are not paired at all (they are not tested: sleep.h).
-    scratch.quiet.resize(n);
-    for (std::size_t b = 0; b < n; ++b) scratch.quiet[b] = bodies[b].fixed || (!asleep.empty() && asleep[b]) ? 1 : 0;
     overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
     const std::size_t most = pool ? 4 * std::size_t(pool->threads()) : 1;
     if (scratch.found.size() < most) {

@@ -26,7 +26,8 @@
 //     while it sleeps.
 // Its bodies' P and L become exactly 0, and its contacts are set aside (SleepState::contacts).
 // A sleeping body is not integrated, has no contacts found with the ground, fixed or other
-// sleeping bodies, and is in no solver: it costs its box in the broad phase and nothing else.
+// sleeping bodies, and is in no solver: it costs its box in the broad phase and nothing else
+// (nothing at all when every rigid body sleeps: then the broad phase does not run).
 //
 // An island wakes (every body in it, rest times back to 0, its contacts back as the warm start
 // of the solver, so a stack picks up the impulses that held it) when
