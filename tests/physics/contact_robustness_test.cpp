@@ -299,7 +299,7 @@ TEST(ContactEnergy, RestingContactDoesNoWorkAndABounceTakesOneMinusESquared) {
 //     substep, swings the energy by up to 1.5e-6 of it in flight, measured over 800 seeds).
 // Explicit Euler gains energy in free rotation by itself: for it, only that it runs or stops
 // with a divergence in one line (the CLI test checks the exit code 3).
-// Under the sanitizers (about four times slower: 310 s for all 200) only the first 40 seeds:
+// Under the sanitizers (six to eight times slower: 60 s for the first 20) only those 20 seeds:
 // there they look for memory errors in the same code; the plain build runs all 200.
 TEST(ContactFuzz, RandomScenesNeverDivergeNorGainEnergy) {
     constexpr int kSeeds = SOFTBODY_CONTACT_FUZZ_SEEDS;

@@ -278,6 +278,7 @@ def main():
                     pile(browser, isolated, options, time.monotonic())
                 except (Failure, BrowserError) as e:
                     failures.append(str(e))
+                browser.close_pages()
             # threads and one_thread: the SIMD tile over several blocks, on each build.
             expected = native(options.softbody, MIXED_ARGS) if {"threads", "one_thread", "module"} & set(chosen) else None
             # module: the third runtime, against the same native summary as the two pages.
@@ -311,6 +312,7 @@ def main():
                     compare_summaries(name, web, expected, case_start)
                 except (Failure, BrowserError) as e:
                     failures.append(str(e))
+                browser.close_pages()
             try:
                 if "drop_record" in chosen:
                     downloads = os.path.join(options.work, "downloads")
@@ -319,6 +321,7 @@ def main():
                     drop_and_record(browser, isolated, downloads)
             except (Failure, BrowserError) as e:
                 failures.append(str(e))
+            browser.close_pages()
             # By touch, on a tablet and a phone, on the one-thread build (any static host's).
             for name in touch_cases.CASES:
                 if name not in chosen:
@@ -329,6 +332,7 @@ def main():
                     print(f"{name}: {time.monotonic() - case_start:.0f} s", flush=True)
                 except (touch_cases.Failure, Failure, BrowserError) as e:
                     failures.append(str(e))
+                browser.close_pages()
     except Failure as e:
         failures.append(str(e))
     finally:
