@@ -100,4 +100,18 @@ void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, 
     std::sort(out.begin(), out.end());
 }
 
+void overlapping_pairs_of(std::span<const Aabb> boxes, std::span<const std::uint32_t> some, std::vector<BodyPair>& out) {
+    out.clear();
+    for (const std::uint32_t a : some) {
+        if (!finite(boxes[a])) continue;
+        for (std::size_t b = 0; b < boxes.size(); ++b) {
+            if (b != a && finite(boxes[b]) && boxes[a].overlaps(boxes[b])) {
+                out.push_back({std::min(a, std::uint32_t(b)), std::max(a, std::uint32_t(b))});
+            }
+        }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());  // two of `some` meet twice
+}
+
 }  // namespace softbody

@@ -48,4 +48,13 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
                          std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {},
                          ThreadPool* pool = nullptr);
 
+// After rigid_body_contacts in the same find, when bodies that were asleep (`was_asleep`) have
+// woken (`asleep` now): appends the contacts of the pairs that find did not test, those of two
+// bodies each asleep or fixed then and not both now, in the pairs' order; their hulls' answers
+// join the cache. The pairs it tested keep their contacts: nothing of them has changed.
+void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
+                               std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
+                               std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep,
+                               std::span<const std::uint8_t> was_asleep, ThreadPool* pool = nullptr);
+
 }  // namespace softbody

@@ -34,7 +34,8 @@
 //   - a contact is found between one of its bodies and an awake body that touches it or reaches
 //     it in the tick (its gap less the approach speed times dt within kSleepTouch), or a
 //     particle coming at it, or a soft body's triangle comes within reach of one (the tick it
-//     happens, before its contacts are solved: they are found again with the island awake).
+//     happens, before its contacts are solved: those it did not have asleep are added,
+//     World::add_woken_contacts).
 //     An awake body within reach that does not touch leaves it asleep: the solver takes it as
 //     static, as a fixed body, and stops the awake one at its surface,
 //   - the app grabs one of its bodies (World::set_grab) or sets its material,

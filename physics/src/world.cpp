@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "contact_solver.h"
@@ -334,11 +335,15 @@ ContactWorld World::contact_world() {
 // contact, found before it touches): rigid bodies with the ground and with one another, soft bodies'
 // particles with rigid bodies. The last ones are kept for their impulses.
 // A sleeping body has none with the ground, fixed bodies or other sleeping ones; one found with
-// an awake body or a particle wakes its island, and they are found again (sleep.h).
+// an awake body or a particle wakes its island, and the woken bodies' contacts are added (sleep.h).
 void World::find_contacts(double reach) {
     std::swap(previous_contacts_, contacts_);
     generate_contacts(reach);
-    while (wake_touched_islands()) generate_contacts(reach);
+    std::vector<std::uint8_t> was_asleep = asleep_;
+    while (wake_touched_islands()) {
+        add_woken_contacts(reach, was_asleep);
+        was_asleep = asleep_;
+    }
 }
 
 void World::generate_contacts(double reach) {
@@ -359,6 +364,35 @@ void World::generate_contacts(double reach) {
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, settings_, reach, contacts_);
     }
+}
+
+// After a wake: the contacts the last find left out because their bodies slept, those of the
+// woken bodies with the ground and of the rigid pairs that were both asleep or fixed, merged
+// into the list in the places a whole find gives them (the ground's by body, the pairs' by pair,
+// then the particles', which sleep does not change). What was found stays: the bodies have not
+// moved since, and a sleeping body's contacts with awake ones and particles were found.
+void World::add_woken_contacts(double reach, const std::vector<std::uint8_t>& was_asleep) {
+    std::vector<RigidContact> ground, pairs;
+    for (std::size_t b = 0; b < rigid_.size(); ++b) {
+        if (was_asleep[b] && !asleep_[b]) rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], settings_, reach, ground);
+    }
+    woken_rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, pairs, asleep_, was_asleep, pool_.get());
+    if (ground.empty() && pairs.empty()) return;
+    const auto is_ground = [](const RigidContact& c) { return c.soft < 0 && c.b < 0; };
+    const auto is_pair = [](const RigidContact& c) { return c.soft < 0 && c.b >= 0; };
+    const auto by_body = [](const RigidContact& x, const RigidContact& y) { return x.a < y.a; };
+    const auto by_pair = [](const RigidContact& x, const RigidContact& y) {
+        const std::uint32_t xb = std::uint32_t(x.b), yb = std::uint32_t(y.b);
+        return std::pair(std::min(x.a, xb), std::max(x.a, xb)) < std::pair(std::min(y.a, yb), std::max(y.a, yb));
+    };
+    const auto ground_end = std::find_if_not(contacts_.begin(), contacts_.end(), is_ground);
+    const auto pairs_end = std::find_if_not(ground_end, contacts_.end(), is_pair);
+    std::vector<RigidContact> merged;
+    merged.reserve(contacts_.size() + ground.size() + pairs.size());
+    std::merge(contacts_.begin(), ground_end, ground.begin(), ground.end(), std::back_inserter(merged), by_body);
+    std::merge(ground_end, pairs_end, pairs.begin(), pairs.end(), std::back_inserter(merged), by_pair);
+    merged.insert(merged.end(), pairs_end, contacts_.end());
+    contacts_ = std::move(merged);
 }
 
 // The solver prepares the contacts found for an interval starting now (the tick, the rest of it,

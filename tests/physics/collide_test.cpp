@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -850,6 +851,32 @@ TEST(BroadPhase, SameAsBruteForce) {
     overlapping_pairs(tower, pairs);
     EXPECT_EQ(pairs, brute_pairs(tower));
     EXPECT_EQ(pairs.size(), 197u);
+}
+
+// The pairs of a few boxes (bodies just woken) with all the others: the sweep's pairs that have
+// one of them, in the same order, each pair of two of them once; a box that is not a number
+// among them meets nothing.
+TEST(BroadPhase, PairsOfAFewAreTheSweepsPairsThatHaveThem) {
+    std::vector<BodyPair> all, some_pairs;
+    std::vector<Aabb> boxes = random_boxes(4, 0.01);
+    const std::vector<std::uint32_t> some{3, 17, 150, 151, 299};  // 150 is the ramp
+    overlapping_pairs(boxes, all);
+    overlapping_pairs_of(boxes, some, some_pairs);
+    const auto has_some = [&](const BodyPair& p) {
+        return std::count(some.begin(), some.end(), p.a) + std::count(some.begin(), some.end(), p.b) > 0;
+    };
+    std::vector<BodyPair> expected;
+    std::copy_if(all.begin(), all.end(), std::back_inserter(expected), has_some);
+    EXPECT_EQ(some_pairs, expected);
+    EXPECT_GT(expected.size(), 20u);  // the ramp alone meets dozens
+    EXPECT_TRUE(std::is_sorted(some_pairs.begin(), some_pairs.end()));
+    boxes[150].lo.x = std::nan("");
+    overlapping_pairs(boxes, all);
+    overlapping_pairs_of(boxes, some, some_pairs);
+    expected.clear();
+    std::copy_if(all.begin(), all.end(), std::back_inserter(expected), has_some);
+    EXPECT_EQ(some_pairs, expected);
+    EXPECT_TRUE(std::none_of(some_pairs.begin(), some_pairs.end(), [](const BodyPair& p) { return p.a == 150 || p.b == 150; }));
 }
 
 // world_aabb: a turned box's half extents are sum_j |R_ij| s_j / 2 (its extreme corners), a

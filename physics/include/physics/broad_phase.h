@@ -46,4 +46,10 @@ struct BodyPair {
 void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {},
                        ThreadPool* pool = nullptr);
 
+// The pairs of overlapping boxes of which at least one is among `some` (indices into boxes),
+// written into `out` (cleared first) in increasing order of (a, b), as overlapping_pairs gives
+// them: each of `some` against every box, O(|some| n). For a few boxes among many (bodies just
+// woken in a pile) instead of sorting them all again. A box that is not finite overlaps nothing.
+void overlapping_pairs_of(std::span<const Aabb> boxes, std::span<const std::uint32_t> some, std::vector<BodyPair>& out);
+
 }  // namespace softbody

@@ -307,6 +307,7 @@ private:
     int rotation_substeps(double time) const;
     void find_contacts(double reach);
     void generate_contacts(double reach);
+    void add_woken_contacts(double reach, const std::vector<std::uint8_t>& was_asleep);
     void reset_sleep();
     bool wake_touched_islands();
     void wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidContact>& warm);
