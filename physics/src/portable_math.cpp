@@ -16,6 +16,7 @@ constexpr double kHalfPi1 = 1.5707963267341256;
 constexpr double kHalfPi2 = 6.077100506303966e-11;
 constexpr double kHalfPi3 = 2.0222662487959506e-21;
 constexpr double kTwoOverPi = 0.6366197723675814;
+constexpr double kQuarterPi = 0.7853981633974483;  // the double nearest pi/4: below it, x * kTwoOverPi < 0.5
 // pi/2 and pi as the double nearest each, and what that leaves out.
 constexpr double kHalfPi = 1.5707963267948966;
 constexpr double kHalfPiLow = 6.123233995736766e-17;
@@ -31,13 +32,18 @@ constexpr double inverse_factorial(int n) {
 // in r's last place: Taylor series to r^21 and r^22, whose next terms are below 2^-80 there,
 // in Horner's form in r^2, and c through the first term of sin(r + c) = sin r + c cos r and
 // cos(r + c) = cos r - c sin r. The largest term is added last, so its rounding is the result's.
+// For |r| <= 1/16 (r^2 <= kSmall: a body's turn in a substep, nearly always) the series stop at
+// r^11 and r^12, whose next terms are below 2^-80 there too: half the work.
+constexpr double kSmall = 1.0 / 256.0;
+
 double sin_reduced(double r, double c) {
     constexpr double s3 = -inverse_factorial(3), s5 = inverse_factorial(5), s7 = -inverse_factorial(7),
                      s9 = inverse_factorial(9), s11 = -inverse_factorial(11), s13 = inverse_factorial(13),
                      s15 = -inverse_factorial(15), s17 = inverse_factorial(17), s19 = -inverse_factorial(19),
                      s21 = inverse_factorial(21);
     const double z = r * r;
-    const double tail = s3 + z * (s5 + z * (s7 + z * (s9 + z * (s11 + z * (s13 + z * (s15 + z * (s17 + z * (s19 + z * s21))))))));
+    const double tail = z <= kSmall ? s3 + z * (s5 + z * (s7 + z * (s9 + z * s11)))
+                                    : s3 + z * (s5 + z * (s7 + z * (s9 + z * (s11 + z * (s13 + z * (s15 + z * (s17 + z * (s19 + z * s21))))))));
     return r + (r * z * tail + c * (1.0 - 0.5 * z));
 }
 
@@ -47,7 +53,8 @@ double cos_reduced(double r, double c) {
                      c16 = inverse_factorial(16), c18 = -inverse_factorial(18), c20 = inverse_factorial(20),
                      c22 = -inverse_factorial(22);
     const double z = r * r;
-    const double tail = c4 + z * (c6 + z * (c8 + z * (c10 + z * (c12 + z * (c14 + z * (c16 + z * (c18 + z * (c20 + z * c22))))))));
+    const double tail = z <= kSmall ? c4 + z * (c6 + z * (c8 + z * (c10 + z * c12)))
+                                    : c4 + z * (c6 + z * (c8 + z * (c10 + z * (c12 + z * (c14 + z * (c16 + z * (c18 + z * (c20 + z * c22))))))));
     // 1 - z/2 + z^2 tail, with 1 - z/2 split so that its rounding error is kept.
     const double half_z = 0.5 * z;
     const double head = 1.0 - half_z;
@@ -59,6 +66,13 @@ double cos_reduced(double r, double c) {
 // and the two are within a factor of two of each other); the next part's subtraction keeps
 // its rounding error in c (Knuth's two-sum).
 int reduce(double x, double& r, double& c) {
+    // Within pi/4, n is 0 and the steps below give x itself and c = 0 (a small body turn in a
+    // substep, nearly always): the same without them (x + 0 as they make -0 into +0).
+    if (std::fabs(x) < kQuarterPi) {
+        r = x + 0.0;
+        c = 0.0;
+        return 0;
+    }
     const double n = std::nearbyint(x * kTwoOverPi);
     const double t = x - n * kHalfPi1;
     const double w = n * kHalfPi2;
