@@ -102,7 +102,7 @@ sanitizer_tests() {
 
 # Each fuzz target (built by sanitizer_tests) from its seeds and every input that once broke it, copied to a temporary
 # folder (the fuzzer adds what it finds there, never in tests/). By default a fixed seed and a
-# fixed number of inputs (FUZZ_RUNS, default 60,000: about 10 s a target here), the same amount
+# fixed number of inputs (FUZZ_RUNS, default 30,000: 3 to 35 s a target here), the same amount
 # of fuzzing on any machine; with FUZZ_SECONDS set, for that long from a fresh seed each time,
 # to look for new findings. A
 # crash, a sanitizer's report, a broken invariant or a slow input fails, and its input is kept.
@@ -111,7 +111,7 @@ fuzz_smoke() {
   if [ -n "${FUZZ_SECONDS:-}" ]; then
     budget=(-max_total_time="$FUZZ_SECONDS")
   else
-    budget=(-seed=1 -runs="${FUZZ_RUNS:-60000}")
+    budget=(-seed=1 -runs="${FUZZ_RUNS:-30000}")
   fi
   work=$(mktemp -d "${TMPDIR:-/tmp}/softbody-fuzz.XXXXXX")
   for target in fuzz_mesh fuzz_scene fuzz_set; do

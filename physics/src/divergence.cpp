@@ -152,11 +152,16 @@ double World::kinetic_plus_gravity() const {
             gravity -= double(body.mass) * double(dot(settings_.gravity, body.x[i]));
         }
     }
+    // A sleeping body's P and L are exactly 0: its kinetic energy adds nothing, not even a
+    // rounding, and its motion (a rotation matrix and J^-1) is not worked out.
     for (std::size_t b = 0; b < rigid_.size(); ++b) {
         if (rigid_[b].fixed) continue;
-        const RigidMotion m = rigid_motion(b);
-        kinetic += 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
-        gravity -= rigid_[b].mass * dot(Vec3d(settings_.gravity), m.x);
+        const double* s = rigid_state(b);
+        if (!asleep_[b]) {
+            const RigidMotion m = rigid_motion(b);
+            kinetic += 0.5 * dot(m.P, m.v) + 0.5 * dot(m.L, m.omega);
+        }
+        gravity -= rigid_[b].mass * dot(Vec3d(settings_.gravity), Vec3d{s[rigid::X], s[rigid::X + 1], s[rigid::X + 2]});
     }
     return kinetic + gravity;
 }
