@@ -12,9 +12,12 @@ void cpu_relax() {
 
 using Clock = std::chrono::steady_clock;
 
-// Longer than 64 polls and a yield ever take on a core of one's own (a few microseconds), far
-// shorter than the time slice another program gets when it shares the core (milliseconds).
-constexpr std::chrono::microseconds kDescheduled{50};
+// Longer than 64 polls and a yield take on a core of one's own, far shorter than the time slice
+// another program gets when it shares the core (milliseconds). Under a hypervisor the polls and
+// the yield take a few microseconds but now and then 50 to 300: with 50 here, a worker took those
+// for a crowded machine about once in 15 ticks of a pile, and slept after every batch for kCrowded,
+// so the caller spent a twentieth of its time waking it (60 wakes a tick instead of 3).
+constexpr std::chrono::microseconds kDescheduled{500};
 
 enum class Spun {
     Ready,        // ready() became true
