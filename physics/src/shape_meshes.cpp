@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -74,14 +75,26 @@ Mesh box_mesh(const Vec3d& size) {
     return build_mesh(b.raw, "box " + number(size.x) + " x " + number(size.y) + " x " + number(size.z));
 }
 
-Mesh sphere_mesh(double radius, int subdivisions) {
-    require_size("sphere radius", radius);
-    if (subdivisions < 0 || subdivisions > 5) {
+namespace {
+
+void require_subdivisions(int subdivisions) {
+    if (subdivisions < 0 || subdivisions > kMostSphereSubdivisions) {
         throw InputError("sphere subdivisions must be 0 to 5 (10 * 4^s + 2 vertices), got " + std::to_string(subdivisions));
     }
+}
+
+// The icosphere of radius 1 at one level: its vertices' directions, its faces, and it welded.
+struct Icosphere {
+    std::vector<Vec3d> directions;
+    std::vector<std::array<std::uint32_t, 3>> faces;
+    Mesh welded;  // radius 1; its particles are the directions in order (nothing welds)
+};
+
+Icosphere make_icosphere(int subdivisions) {
     // The icosahedron: the cyclic permutations of (0, +-1, +-phi), on the unit sphere.
     const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3d> p;
+    Icosphere ico;
+    std::vector<Vec3d>& p = ico.directions;
     for (int axis = 0; axis < 3; ++axis) {
         for (const double s1 : {-1.0, 1.0}) {
             for (const double s2 : {-phi, phi}) {
@@ -96,7 +109,7 @@ Mesh sphere_mesh(double radius, int subdivisions) {
     // shortest distance between corners), turned to face outward.
     const double edge = length(p[0] - p[1]) < length(p[0] - p[2]) ? length(p[0] - p[1]) : length(p[0] - p[2]);
     auto adjacent = [&](std::size_t i, std::size_t j) { return std::abs(length(p[i] - p[j]) - edge) < 1e-9; };
-    std::vector<std::array<std::uint32_t, 3>> faces;
+    std::vector<std::array<std::uint32_t, 3>>& faces = ico.faces;
     for (std::uint32_t i = 0; i < 12; ++i) {
         for (std::uint32_t j = i + 1; j < 12; ++j) {
             for (std::uint32_t k = j + 1; k < 12; ++k) {
@@ -131,13 +144,55 @@ Mesh sphere_mesh(double radius, int subdivisions) {
         }
         faces = std::move(finer);
     }
+    return ico;
+}
+
+RawMesh icosphere_raw(const Icosphere& ico, double radius) {
     Builder b;
-    for (const Vec3d& v : p) b.vertex(v * radius);
-    for (const auto& [i, j, k] : faces) {
+    for (const Vec3d& v : ico.directions) b.vertex(v * radius);
+    for (const auto& [i, j, k] : ico.faces) {
         b.triangle(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j), static_cast<std::int32_t>(k));
     }
-    return build_mesh(b.raw, "sphere r " + number(radius) + " (icosphere, " + std::to_string(subdivisions) +
-                                 " subdivisions)");
+    return std::move(b.raw);
+}
+
+std::string sphere_source(double radius, int subdivisions) {
+    return "sphere r " + number(radius) + " (icosphere, " + std::to_string(subdivisions) + " subdivisions)";
+}
+
+// Each level made once, on first use, from any thread.
+const Icosphere& icosphere(int subdivisions) {
+    static std::array<std::once_flag, kMostSphereSubdivisions + 1> once;
+    static std::array<Icosphere, kMostSphereSubdivisions + 1> spheres;
+    const auto level = static_cast<std::size_t>(subdivisions);
+    std::call_once(once[level], [&] {
+        Icosphere ico = make_icosphere(subdivisions);
+        ico.welded = build_mesh(icosphere_raw(ico, 1.0), sphere_source(1.0, subdivisions));
+        spheres[level] = std::move(ico);
+    });
+    return spheres[level];
+}
+
+}  // namespace
+
+RawMesh sphere_raw_mesh(double radius, int subdivisions) {
+    require_size("sphere radius", radius);
+    require_subdivisions(subdivisions);
+    return icosphere_raw(icosphere(subdivisions), radius);
+}
+
+// The welded unit sphere with its positions scaled: welding the scaled vertices again would give
+// the same particles, render vertices and normal slots (nothing welds at any radius, and a
+// triangle's normal keeps its direction), as the tests check against build_mesh, at a tenth of
+// the time. A pile of a thousand balls, each with its own radius, loads in a fraction of a second.
+Mesh sphere_mesh(double radius, int subdivisions) {
+    require_size("sphere radius", radius);
+    require_subdivisions(subdivisions);
+    const Icosphere& ico = icosphere(subdivisions);
+    Mesh mesh = ico.welded;
+    mesh.source = sphere_source(radius, subdivisions);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) mesh.positions[i] = to_float(ico.directions[i] * radius);
+    return mesh;
 }
 
 Mesh cylinder_mesh(double radius, double height, int segments) {

@@ -8,6 +8,7 @@
 
 #include "generated_meshes.h"
 #include "physics/error.h"
+#include "physics/shape_meshes.h"
 #include "test_support.h"
 
 namespace softbody::test {
@@ -116,6 +117,36 @@ TEST(Weld, TrianglesThatCollapseAreDropped) {
     const Mesh mesh = build_mesh(parse_obj_text(obj, "t.obj"), "t.obj");
     EXPECT_EQ(mesh.particle_count(), 3u);
     EXPECT_EQ(mesh.triangle_count(), 1u);
+}
+
+// sphere_mesh scales one welded unit sphere instead of welding each radius's vertices: it must be
+// exactly what welding them gives, at every level and at radii from below the weld's rescaling
+// (1e-3 across) to far above it.
+TEST(Weld, ASphereIsItsVerticesWeldedAtEveryRadius) {
+    for (int level = 0; level <= kMostSphereSubdivisions; ++level) {
+        for (const double radius : {1e-5, 0.1, 0.137, 0.2, 1.0, 3.7, 2.5e7}) {
+            const Mesh fast = sphere_mesh(radius, level);
+            const Mesh welded = build_mesh(sphere_raw_mesh(radius, level), fast.source);
+            SCOPED_TRACE("level " + std::to_string(level) + ", radius " + std::to_string(radius));
+            EXPECT_EQ(fast.particle_count(), 10u * (1u << (2 * level)) + 2u);
+            ASSERT_EQ(fast.positions.size(), welded.positions.size());
+            for (std::size_t i = 0; i < fast.positions.size(); ++i) {
+                EXPECT_EQ(fast.positions[i].x, welded.positions[i].x);
+                EXPECT_EQ(fast.positions[i].y, welded.positions[i].y);
+                EXPECT_EQ(fast.positions[i].z, welded.positions[i].z);
+            }
+            EXPECT_EQ(fast.vertex_to_particle, welded.vertex_to_particle);
+            EXPECT_EQ(fast.triangles, welded.triangles);
+            EXPECT_EQ(fast.normal_slot_count, welded.normal_slot_count);
+            ASSERT_EQ(fast.render_vertices.size(), welded.render_vertices.size());
+            for (std::size_t i = 0; i < fast.render_vertices.size(); ++i) {
+                EXPECT_EQ(fast.render_vertices[i].particle, welded.render_vertices[i].particle);
+                EXPECT_EQ(fast.render_vertices[i].normal_slot, welded.render_vertices[i].normal_slot);
+            }
+            EXPECT_EQ(fast.has_uvs, welded.has_uvs);
+            EXPECT_TRUE(fast.warnings.empty());
+        }
+    }
 }
 
 // --- Loading ------------------------------------------------------------------------------------

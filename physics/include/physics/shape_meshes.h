@@ -15,7 +15,10 @@ Mesh box_mesh(const Vec3d& size);
 
 // An icosphere: the regular icosahedron with each triangle split in four `subdivisions` times
 // (0 to 5; 10 * 4^s + 2 vertices), every vertex on the sphere. Centred, facing outward.
+inline constexpr int kMostSphereSubdivisions = 5;
 Mesh sphere_mesh(double radius, int subdivisions = 3);
+// The same icosphere before welding: sphere_mesh gives what build_mesh makes of it.
+RawMesh sphere_raw_mesh(double radius, int subdivisions = 3);
 
 // A prism on a regular polygon of `segments` corners (3 or more) inscribed in the circle of
 // `radius`, capped by fans from the centres of its ends; axis z, centred, facing outward.
