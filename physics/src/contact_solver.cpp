@@ -973,9 +973,14 @@ void ContactSolver::substep(const ContactWorld& world) {
     }
 
     // The energy of this substep's contacts, island by island: what restitution may give back.
+    // Each body's on the threads, the sums in the bodies' order.
+    body_work_.resize(bodies_.size());
+    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+        body_work_[i + 1] = {work(bodies_[i + 1], false), work(bodies_[i + 1], true)};
+    });
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
-        absorbed_[island_of_[b]] -= work(bodies_[b], false);
-        energy_.total += work(bodies_[b], true);
+        absorbed_[island_of_[b]] -= body_work_[b].first;
+        energy_.total += body_work_[b].second;
     }
 
     // A point still apart as the substep began and touching once the positions moved met its

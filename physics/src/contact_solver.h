@@ -54,6 +54,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "block_solver.h"
@@ -267,6 +268,7 @@ private:
     std::vector<std::int32_t> rigid_index_;  // rigid body -> solver body (0: static or not in contact)
     std::vector<std::uint32_t> island_of_;   // solver body -> island
     std::vector<double> absorbed_;           // per island: energy its contacts took this tick, J
+    std::vector<std::pair<double, double>> body_work_;  // per body: work() exact and as shown, this substep
     ContactEnergy energy_;
     // The manifolds by group (slabs()), laid out in that order (prepare): group c is
     // manifolds_[slab_start_[c]] up to manifolds_[slab_start_[c + 1]]. First each slab's (no two
