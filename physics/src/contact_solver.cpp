@@ -8,25 +8,24 @@
 #include <numeric>
 #include <tuple>
 
+#include "kept_memory.h"
 #include "physics/portable_math.h"
 
 namespace softbody {
 
 namespace {
 
-using Key = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
+using Key = ContactKey;
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
 // The contacts' keys with their places, sorted (by key, then place). A list of contacts comes as
 // runs of one pair's points (RigidContact's order), a few points each: the runs are sorted by
 // their pair, then each pair's points by feature, a few at a time. The same order as sorting
-// every point at once, with a quarter of the items to sort.
-std::vector<std::pair<Key, std::uint32_t>> sorted_keys(const std::vector<RigidContact>& contacts) {
-    struct Run {
-        std::tuple<std::int32_t, std::uint32_t, std::int32_t> pair;
-        std::uint32_t first = 0, count = 0;
-    };
-    std::vector<Run> runs;
+// every point at once, with a quarter of the items to sort. Into `keys`, with `runs` to work in
+// (both kept from call to call).
+void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactRun>& runs, std::vector<std::pair<Key, std::uint32_t>>& keys) {
+    using Run = ContactRun;
+    runs.clear();
     for (std::size_t k = 0; k < contacts.size();) {
         const RigidContact& c = contacts[k];
         std::size_t end = k + 1;
@@ -35,8 +34,8 @@ std::vector<std::pair<Key, std::uint32_t>> sorted_keys(const std::vector<RigidCo
         k = end;
     }
     std::sort(runs.begin(), runs.end(), [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
-    std::vector<std::pair<Key, std::uint32_t>> keys;
-    keys.reserve(contacts.size());
+    keys.clear();
+    reserve_with_room(keys, contacts.size());
     for (std::size_t r = 0; r < runs.size();) {
         // The runs of one pair (one, unless its points were more than a manifold holds).
         const std::size_t from = keys.size();
@@ -47,7 +46,6 @@ std::vector<std::pair<Key, std::uint32_t>> sorted_keys(const std::vector<RigidCo
         std::sort(keys.begin() + std::ptrdiff_t(from), keys.end());
         r = end;
     }
-    return keys;
 }
 
 // A body whose angular velocity would be wrong by more than this (m/s, at its surface) with its
@@ -193,7 +191,10 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     if (contacts.empty()) return;
 
     // Solver bodies, in order of first appearance (the contacts' order: the same on every run).
-    std::vector<std::vector<std::int32_t>> particle_index(world.particles.size());
+    Buffers& kept = buffers_;
+    std::vector<std::vector<std::int32_t>>& particle_index = kept.particle_index;
+    particle_index.resize(world.particles.size());
+    for (std::vector<std::int32_t>& map : particle_index) map.clear();
     const auto rigid_body = [&](std::int64_t b) -> std::uint32_t {
         if (b < 0) return 0;
         const RigidBody& body = world.bodies[std::size_t(b)];
@@ -238,13 +239,19 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // within kSamePoint that no other took. Sorted by key, in log time.
     // The keys are sorted with the contact's place (sorted_keys), so that equal keys too come in
     // one order on every run.
-    const std::vector<std::pair<Key, std::uint32_t>> last = sorted_keys(previous);
-    std::vector<char> taken(previous.size(), 0);
+    sorted_keys(previous, kept.runs, kept.last);
+    const std::vector<std::pair<Key, std::uint32_t>>& last = kept.last;
+    std::vector<char>& taken = kept.taken;
+    taken.clear();
+    resize_with_room(taken, previous.size());
     const auto lower = [&](const Key& key) {
         return std::lower_bound(last.begin(), last.end(), key, [](const std::pair<Key, std::uint32_t>& k, const Key& want) { return k.first < want; });
     };
     // The same features: looked up in parallel, then taken in the contacts' order.
-    std::vector<std::int64_t> match(contacts.size(), -1);
+    std::vector<std::int64_t>& match = kept.match;
+    match.clear();
+    reserve_with_room(match, contacts.size());
+    match.resize(contacts.size(), -1);
     parallel(contacts.size(), kPointGrain, [&](std::size_t k) {
         const Key key = key_of(contacts[k]);
         const auto found = lower(key);
@@ -279,7 +286,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // most four, and their solver bodies in order of first appearance. Then each is built where
     // the passes take it (slabs()), its points after the last one's: every pass reads them through
     // memory in order (in stack:20 the passes read 23 MB of them 20 times a tick).
-    std::vector<FoundManifold> found;
+    std::vector<FoundManifold>& found = kept.found;
+    found.clear();
     for (std::size_t i = 0; i < contacts.size();) {
         const RigidContact& first = contacts[i];
         FoundManifold f;
@@ -299,12 +307,13 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     }
     pool_ = world.pool;
     slabs(found);
-    manifolds_.resize(found.size());
-    points_.resize(contacts.size());
-    pass_.resize(contacts.size());
-    gap_.resize(contacts.size());
-    found_order_.resize(found.size());
-    std::vector<std::uint32_t> first_point(found.size());
+    resize_with_room(manifolds_, found.size());
+    resize_with_room(points_, contacts.size());
+    resize_with_room(pass_, contacts.size());
+    resize_with_room(gap_, contacts.size());
+    resize_with_room(found_order_, found.size());
+    std::vector<std::uint32_t>& first_point = kept.first_point;
+    resize_with_room(first_point, found.size());
     std::uint32_t next = 0;
     for (std::size_t at = 0; at < found.size(); ++at) {
         first_point[at] = next;
@@ -368,7 +377,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // Islands: bodies joined by this tick's contacts (the static world joins nothing; a soft
     // body's particles are one body here). Restitution's energy is bounded per island.
     const std::size_t nodes = world.bodies.size() + world.particles.size();
-    std::vector<std::uint32_t> parent(nodes);
+    std::vector<std::uint32_t>& parent = kept.parent;
+    resize_with_room(parent, nodes);
     std::iota(parent.begin(), parent.end(), 0u);
     const auto find = [&](std::uint32_t x) {
         while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -382,7 +392,10 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         const std::uint32_t x = find(node(bodies_[m.a])), y = find(node(bodies_[m.b]));
         if (x != y) parent[std::max(x, y)] = std::min(x, y);
     }
-    std::vector<std::int64_t> number(nodes, -1);
+    std::vector<std::int64_t>& number = kept.number;
+    number.clear();
+    reserve_with_room(number, nodes);
+    number.resize(nodes, -1);
     island_of_.assign(bodies_.size(), 0);
     std::uint32_t islands = 0;
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
@@ -481,17 +494,23 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
     for (int k = 1; k < 3; ++k) {
         if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
     }
-    std::vector<std::uint32_t> by_place(n > 0 ? n - 1 : 0);
+    std::vector<std::uint32_t>& by_place = buffers_.by_place;
+    resize_with_room(by_place, n > 0 ? n - 1 : 0);
     std::iota(by_place.begin(), by_place.end(), 1u);
     std::sort(by_place.begin(), by_place.end(), [&](std::uint32_t x, std::uint32_t y) {
         const double px = bodies_[x].x0[axis], py = bodies_[y].x0[axis];
         return px < py || (px == py && x < y);
     });
-    std::vector<std::uint32_t> slab(n, 0);
+    std::vector<std::uint32_t>& slab = buffers_.slab;
+    slab.clear();
+    reserve_with_room(slab, n);
+    slab.resize(n, 0);
     for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r]] = std::uint32_t(r * kBlocks / by_place.size());
     // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
     // (the last group); then laid out group after group, each in order.
-    std::vector<std::uint32_t> group(found.size()), count(kGroups + 1, 0);
+    std::vector<std::uint32_t> &group = buffers_.group, &count = buffers_.count;
+    resize_with_room(group, found.size());
+    count.assign(kGroups + 1, 0);
     for (std::size_t i = 0; i < found.size(); ++i) {
         const FoundManifold& m = found[i];
         const std::uint32_t a = m.a != 0 ? slab[m.a] : slab[m.b], b = m.b != 0 ? slab[m.b] : a;
@@ -501,8 +520,9 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
     }
     slab_start_.assign(kGroups + 1, 0);
     for (std::size_t c = 0; c < kGroups; ++c) slab_start_[c + 1] = slab_start_[c] + count[c + 1];
-    std::vector<std::uint32_t> at(slab_start_.begin(), slab_start_.end() - 1);
-    slab_order_.resize(found.size());
+    std::vector<std::uint32_t>& at = buffers_.at;
+    at.assign(slab_start_.begin(), slab_start_.end() - 1);
+    resize_with_room(slab_order_, found.size());
     for (std::size_t i = 0; i < found.size(); ++i) slab_order_[at[group[i]]++] = std::uint32_t(i);
 }
 

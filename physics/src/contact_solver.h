@@ -54,6 +54,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -190,6 +191,15 @@ struct SolverPoint {
 
 inline constexpr std::uint32_t kMaxManifoldPoints = 4;
 
+// A contact's key, to find it again a tick later: side a's soft body (-1: rigid), a, b, the
+// feature that made it.
+using ContactKey = std::tuple<std::int32_t, std::uint32_t, std::int32_t, std::uint32_t>;
+// A run of one pair's points next to each other in a list of contacts.
+struct ContactRun {
+    std::tuple<std::int32_t, std::uint32_t, std::int32_t> pair;
+    std::uint32_t first = 0, count = 0;
+};
+
 struct SolverManifold {
     std::uint32_t a = 0, b = 0;  // solver bodies
     Vec3d n, t[2];
@@ -248,6 +258,21 @@ private:
         std::uint32_t contact = 0, count = 0, a = 0, b = 0;
     };
     void slabs(std::span<const FoundManifold> found);
+    // What prepare() and slabs() work with and drop, kept from tick to tick with its memory
+    // (kept_memory.h): the last tick's contacts by key, which of them each contact takes over,
+    // the manifolds as found, the slabs' and the islands' working lists.
+    struct Buffers {
+        std::vector<ContactRun> runs;
+        std::vector<std::pair<ContactKey, std::uint32_t>> last;
+        std::vector<char> taken;
+        std::vector<std::int64_t> match;
+        std::vector<std::vector<std::int32_t>> particle_index;
+        std::vector<FoundManifold> found;
+        std::vector<std::uint32_t> first_point;
+        std::vector<std::uint32_t> parent;
+        std::vector<std::int64_t> number;
+        std::vector<std::uint32_t> by_place, slab, group, count, at;
+    };
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
     // f(i) for every i below count, on the pool's threads when there are enough: only for items
@@ -280,6 +305,7 @@ private:
     std::vector<std::uint32_t> slab_start_;
     std::vector<std::uint32_t> found_order_;
     ThreadPool* pool_ = nullptr;
+    Buffers buffers_;
 };
 
 // Eq. 38's denominator for a unit direction n at offsets r_a, r_b from the centres of mass:

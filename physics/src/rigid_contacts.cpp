@@ -5,6 +5,7 @@
 
 #include "collide_internal.h"
 #include "ground_contact.h"
+#include "kept_memory.h"
 
 namespace softbody {
 
@@ -160,12 +161,21 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
             }
         }
     });
+    std::size_t found = 0, new_pairs = 0, new_points = 0;
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        found += scratch.found[chunk].size();
+        new_pairs += scratch.new_pairs[chunk].size();
+        new_points += scratch.new_points[chunk].size();
+    }
+    reserve_with_room(out, out.size() + found);
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) out.insert(out.end(), scratch.found[chunk].begin(), scratch.found[chunk].end());
     // This find's answers, by key, for the next.
     if (replace_cache) {
         scratch.cache.pairs.clear();
         scratch.cache.points.clear();
     }
+    reserve_with_room(scratch.cache.pairs, scratch.cache.pairs.size() + new_pairs);
+    reserve_with_room(scratch.cache.points, scratch.cache.points.size() + new_points);
     for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
         const auto offset = std::uint32_t(scratch.cache.points.size());
         for (CachedPair pair : scratch.new_pairs[chunk]) {
