@@ -185,10 +185,12 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     h_ = settings.dt / double(settings.substeps);
     energy_ = {};
     bodies_.assign(1, Body{});
-    manifolds_.clear();
-    points_.clear();
     rigid_index_.assign(world.bodies.size(), 0);
-    if (contacts.empty()) return;
+    if (contacts.empty()) {
+        manifolds_.clear();
+        points_.clear();
+        return;
+    }
 
     // Solver bodies, in order of first appearance (the contacts' order: the same on every run).
     Buffers& kept = buffers_;
@@ -307,6 +309,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     }
     pool_ = world.pool;
     slabs(found);
+    // Sized without clearing first: each manifold and point is set whole below (a pile's are
+    // tens of megabytes, and clearing them first too is work on one thread every tick).
     resize_with_room(manifolds_, found.size());
     resize_with_room(points_, contacts.size());
     resize_with_room(pass_, contacts.size());
