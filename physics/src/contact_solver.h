@@ -247,8 +247,10 @@ private:
     void load(const ContactWorld& world);
     void refresh(const ContactWorld& world);
     void store(const ContactWorld& world);
+    void separate(const SolverManifold& m, bool moved);
     void separations(bool moved);
-    void solve(bool bias);
+    // A pass over every manifold; `separate_first`: each one's separations(true) just before.
+    void solve(bool bias, bool separate_first = false);
     void restitute(bool after_positions);
     void forget_bounced();
     void totals();
