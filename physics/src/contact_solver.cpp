@@ -649,7 +649,7 @@ void ContactSolver::refresh(const ContactWorld& world) {
 // One manifold's points at a time, inside the sweep that reads them next (who bounces; the
 // relax's first pass): each point is its own, so it is the same as a sweep of its own before,
 // and in a pile it saves a pass through memory (in stack:20, 78,000 points of 184 bytes, twice a
-// substep). separations() is such a sweep, for when there is no pass to put it in.
+// substep). separations() is such a sweep, for when there is no relax to put it in.
 void ContactSolver::separate(const Manifold& m, bool moved) {
     const double inv_h = 1.0 / h_;
     const Body &A = bodies_[m.a], &B = bodies_[m.b];
@@ -722,11 +722,8 @@ void ContactSolver::warm_start(Manifold& m) {
 
 // One pass over every manifold: its normal impulses together toward each point's target, then
 // friction at its centre. `bias`: push overlaps apart (the solve), or not (the relax).
-void ContactSolver::solve(bool bias, bool separate_first) {
-    each_in_slabs([&](Manifold& m) {
-        if (separate_first) separate(m, true);
-        solve_manifold(m, bias);
-    });
+void ContactSolver::solve(bool bias) {
+    each_in_slabs([&](Manifold& m) { solve_manifold(m, bias); });
 }
 
 void ContactSolver::solve_manifold(Manifold& m, bool bias) {
@@ -974,11 +971,20 @@ void ContactSolver::substep(const ContactWorld& world) {
         }
     });
     refresh(world);
-    if (settings_.relax_passes > 0) {
-        solve(false, true);  // with the separations where the positions left the points
-        for (int pass = 1; pass < settings_.relax_passes; ++pass) solve(false);
-    } else {
+    // The relax; its first pass works out each manifold's separations where the positions left
+    // its points just before, and its last adds each manifold's impulses to the tick's just
+    // after, while its points are at hand (separate(), totals()).
+    for (int pass = 0; pass < settings_.relax_passes; ++pass) {
+        const bool first = pass == 0, last = pass + 1 == settings_.relax_passes;
+        each_in_slabs([&](Manifold& m) {
+            if (first) separate(m, true);
+            solve_manifold(m, false);
+            if (last) add_to_totals(m);
+        });
+    }
+    if (settings_.relax_passes == 0) {
         separations(true);
+        totals();
     }
     // Under RK4 and explicit Euler, a particle its contact pushed leaves with the velocity it
     // moved with along the normal (its chord), not with what its integrator's end velocity still
@@ -1025,9 +1031,12 @@ void ContactSolver::substep(const ContactWorld& world) {
     // the substep's acceleration, sqrt(v_n^2 + 2 a s), once the tick is over (finish): so the
     // tick ends with the bodies touching, and a ball seen tick by tick (or drawn between ticks)
     // turns at the surface, not above it. It rests there for the rest of the tick, held.
+    // In the same sweep, a manifold that bounced forgets its impulses (forget_bounced()); only
+    // one that can bounce ever has.
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        const Manifold& m = manifolds_[i];
+        Manifold& m = manifolds_[i];
         if (m.e <= 0.0) return;
+        forget_if_bounced(m);
         const Body &A = bodies_[m.a], &B = bodies_[m.b];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             const GapPoint& g = gap_[k];
@@ -1048,33 +1057,33 @@ void ContactSolver::substep(const ContactWorld& world) {
             }
         }
     });
-    totals();
-    forget_bounced();
     store(world);
 }
 
 // What the substep's impulses added to the tick's: each one as it ended (the warm start's and
 // every pass's changes, summed).
+void ContactSolver::add_to_totals(Manifold& m) {
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].total_normal += pass_[k].normal_impulse;
+    m.total_friction[0] += m.friction[0];
+    m.total_friction[1] += m.friction[1];
+}
+
 void ContactSolver::totals() {
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        Manifold& m = manifolds_[i];
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].total_normal += pass_[k].normal_impulse;
-        m.total_friction[0] += m.friction[0];
-        m.total_friction[1] += m.friction[1];
-    });
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { add_to_totals(manifolds_[i]); });
 }
 
 // A manifold that bounced is coming apart: it starts the next substep (or tick) from no impulse.
 // Warm starting it from the impulse that stopped it would throw it again, and its friction,
 // limited by that impulse, would spin it up.
+void ContactSolver::forget_if_bounced(Manifold& m) {
+    if (!m.bounced && !m.bouncing) return;
+    for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].normal_impulse = 0.0;
+    m.friction[0] = m.friction[1] = m.twist = 0.0;
+    m.roll = Vec3d{};
+}
+
 void ContactSolver::forget_bounced() {
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        Manifold& m = manifolds_[i];
-        if (!m.bounced && !m.bouncing) return;
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].normal_impulse = 0.0;
-        m.friction[0] = m.friction[1] = m.twist = 0.0;
-        m.roll = Vec3d{};
-    });
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { forget_if_bounced(manifolds_[i]); });
 }
 
 // Restitution: each manifold's bouncing points toward their bounce_target together

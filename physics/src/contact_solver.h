@@ -249,11 +249,12 @@ private:
     void store(const ContactWorld& world);
     void separate(const SolverManifold& m, bool moved);
     void separations(bool moved);
-    // A pass over every manifold; `separate_first`: each one's separations(true) just before.
-    void solve(bool bias, bool separate_first = false);
+    void solve(bool bias);
     void restitute(bool after_positions);
     void forget_bounced();
+    void forget_if_bounced(SolverManifold& m);
     void totals();
+    void add_to_totals(SolverManifold& m);
     double work(const Body& body, bool shown) const;
     // A manifold as found: its first contact in the tick's list, how many, its two bodies.
     struct FoundManifold {
