@@ -745,6 +745,15 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     for (int i = 0; i < n; ++i) {
         if (bias || P[i].s <= kSpeculative) index[count++] = i;
     }
+    // A relax of a manifold none of whose points touch, holding no impulse of any kind, does
+    // nothing: no normal impulse to solve for, and friction, twist and roll limited to zero
+    // stay zero. A falling pile's manifolds are mostly such (in bin:1000, 94% of the relax's
+    // visits; in stack:20, 17%).
+    if (!bias && count == 0 && m.friction[0] == 0.0 && m.friction[1] == 0.0 && m.twist == 0.0 && m.roll == Vec3d{}) {
+        bool held = false;
+        for (int i = 0; i < n; ++i) held = held || P[i].normal_impulse != 0.0;
+        if (!held) return;
+    }
     // A point's normal velocity: the bodies' relative motion along n (the same for every point
     // of the manifold), then each side's turn at the point.
     const auto linear_velocity = [&] { return dot(A.v - B.v, m.n); };
@@ -932,7 +941,6 @@ void ContactSolver::substep(const ContactWorld& world) {
 
     solve(true);
     if (bouncing) restitute(false);
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { manifolds_[i].bounced = manifolds_[i].bouncing; });
 
     // The positions: the free step's, moved on by h times what the contacts changed. The turn:
     // under symplectic Euler and Verlet the free turn again from where the substep began, with
@@ -1076,7 +1084,7 @@ void ContactSolver::totals() {
 // Warm starting it from the impulse that stopped it would throw it again, and its friction,
 // limited by that impulse, would spin it up.
 void ContactSolver::forget_if_bounced(Manifold& m) {
-    if (!m.bounced && !m.bouncing) return;
+    if (!m.bouncing) return;
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) pass_[k].normal_impulse = 0.0;
     m.friction[0] = m.friction[1] = m.twist = 0.0;
     m.roll = Vec3d{};
@@ -1228,7 +1236,7 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
     std::atomic<bool> any_due{false};
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
         Manifold& m = manifolds_[i];
-        m.bouncing = m.bounced = false;
+        m.bouncing = false;
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             Point& p = points_[k];
             p.bounce = 0.0;

@@ -206,8 +206,7 @@ struct SolverManifold {
     double mu = 0.0, e = 0.0;
     std::uint32_t first = 0, count = 0;
     std::uint32_t island = 0;
-    bool bouncing = false;       // some point bounces now
-    bool bounced = false;        // some point bounced before the positions this substep
+    bool bouncing = false;       // some point bounces in this substep (or as the tick ends)
     // Friction, at the points' centre: its anchors' r x t, effective masses, and impulses
     // (this substep's, warm-started; over the tick); the turn about n and its reach.
     Vec3d ft_a[2], ft_b[2];
