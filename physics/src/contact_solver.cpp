@@ -77,6 +77,14 @@ constexpr std::size_t kBlocks = 8;
 // slabs (kBlocks - 1), and those across slabs further apart.
 constexpr std::size_t kGroups = 2 * kBlocks;
 
+// Whether a length whose square is size2 is certainly no more than limit >= 0, without its square
+// root: true only where sqrt(size2) <= limit however both round (a margin of 1e-12 beside the
+// rounding of limit^2, which is relative to it above 1e-150), so that the square root is taken
+// only near or past the limit, and the answer is the one the square root gives. A sticking
+// contact's friction is always within its limit, and the square root is on the passes'
+// longest chain of dependent operations.
+bool within_limit(double size2, double limit) { return limit > 1e-150 && size2 <= limit * limit * (1.0 - 1e-12); }
+
 Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 
 // How a body's contact anchors have turned since the contacts were found (at q0; now at q): with
@@ -858,8 +866,9 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             const double v_t = dot(dv, m.t[d]) + dot(A.w, m.ft_a[d]) - dot(B.w, m.ft_b[d]);
             t[d] = m.friction[d] - v_t * m.tangent_mass[d];
         }
-        const double size = std::sqrt(t[0] * t[0] + t[1] * t[1]), limit = m.mu * normal;
-        if (size > limit) {
+        const double size2 = t[0] * t[0] + t[1] * t[1], limit = m.mu * normal;
+        if (!within_limit(size2, limit) && std::sqrt(size2) > limit) {
+            const double size = std::sqrt(size2);
             const double scale = size > 0.0 ? limit / size : 0.0;
             t[0] *= scale;
             t[1] *= scale;
