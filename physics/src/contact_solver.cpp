@@ -18,6 +18,29 @@ namespace {
 using Key = ContactKey;
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
+// Sorts `items` by `less`, a strict total order, where they come as a few stretches already in
+// order: a tick's contacts are the broad phase's pairs in order, then the ground's, then the
+// particles' (in bin:1000, some 1,500 runs of one pair in 6 to 8 stretches). The stretches are
+// merged, two neighbours at a time, and the result is the sort's, in a fraction of its work.
+template <class T, class Less>
+void sort_nearly_sorted(std::vector<T>& items, const Less& less) {
+    std::vector<std::size_t> edges{0};
+    for (std::size_t i = 1; i < items.size(); ++i) {
+        if (less(items[i], items[i - 1])) edges.push_back(i);
+    }
+    edges.push_back(items.size());
+    while (edges.size() > 2) {
+        std::vector<std::size_t> merged{0};
+        for (std::size_t k = 0; k + 2 < edges.size(); k += 2) {
+            std::inplace_merge(items.begin() + std::ptrdiff_t(edges[k]), items.begin() + std::ptrdiff_t(edges[k + 1]),
+                               items.begin() + std::ptrdiff_t(edges[k + 2]), less);
+            merged.push_back(edges[k + 2]);
+        }
+        if (edges.size() % 2 == 0) merged.push_back(edges.back());  // an odd stretch left over
+        edges.swap(merged);
+    }
+}
+
 // The contacts' keys with their places, sorted (by key, then place). A list of contacts comes as
 // runs of one pair's points (RigidContact's order), a few points each: the runs are sorted by
 // their pair, then each pair's points by feature, a few at a time. The same order as sorting
@@ -33,7 +56,7 @@ void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactR
         runs.push_back({{c.soft, c.a, c.b}, std::uint32_t(k), std::uint32_t(end - k)});
         k = end;
     }
-    std::sort(runs.begin(), runs.end(), [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
+    sort_nearly_sorted(runs, [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
     keys.clear();
     reserve_with_room(keys, contacts.size());
     for (std::size_t r = 0; r < runs.size();) {
@@ -506,18 +529,17 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
     for (int k = 1; k < 3; ++k) {
         if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
     }
-    std::vector<std::uint32_t>& by_place = buffers_.by_place;
+    // (Sorted as place and body side by side: compared through the bodies, each a few hundred
+    // bytes from the next, the sort waited on memory.)
+    std::vector<std::pair<double, std::uint32_t>>& by_place = buffers_.by_place;
     resize_with_room(by_place, n > 0 ? n - 1 : 0);
-    std::iota(by_place.begin(), by_place.end(), 1u);
-    std::sort(by_place.begin(), by_place.end(), [&](std::uint32_t x, std::uint32_t y) {
-        const double px = bodies_[x].x0[axis], py = bodies_[y].x0[axis];
-        return px < py || (px == py && x < y);
-    });
+    for (std::size_t b = 1; b < n; ++b) by_place[b - 1] = {bodies_[b].x0[axis], std::uint32_t(b)};
+    std::sort(by_place.begin(), by_place.end());
     std::vector<std::uint32_t>& slab = buffers_.slab;
     slab.clear();
     reserve_with_room(slab, n);
     slab.resize(n, 0);
-    for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r]] = std::uint32_t(r * kBlocks / by_place.size());
+    for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r].second] = std::uint32_t(r * kBlocks / by_place.size());
     // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
     // (the last group); then laid out group after group, each in order.
     std::vector<std::uint32_t> &group = buffers_.group, &count = buffers_.count;

@@ -273,7 +273,8 @@ private:
         std::vector<std::uint32_t> first_point;
         std::vector<std::uint32_t> parent;
         std::vector<std::int64_t> number;
-        std::vector<std::uint32_t> by_place, slab, group, count, at;
+        std::vector<std::pair<double, std::uint32_t>> by_place;
+        std::vector<std::uint32_t> slab, group, count, at;
     };
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
