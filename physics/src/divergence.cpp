@@ -78,9 +78,18 @@ void World::check_divergence() {
         const std::string who = soft_.size() > 1 ? "body '" + soft_[b].name() + "' particle " : "particle ";
         what = soft_body_fault(soft_[b], who);
     }
-    // A body asleep or fixed has not moved since it was last checked (nor can it have).
-    for (std::size_t b = 0; b < rigid_.size() && what.empty(); ++b) {
-        if (!rigid_[b].fixed && !asleep_[b]) what = rigid_body_fault(rigid_[b], rigid_state(b));
+    // A body asleep or fixed has not moved since it was last checked (nor can it have). The
+    // first body at fault, looked for on every thread (each chunk's first, then the first chunk's).
+    if (what.empty()) {
+        const std::size_t none = rigid_.size();
+        std::vector<std::size_t> first_fault(std::size_t(4 * pool_->threads()), none);
+        for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+            for (std::size_t b = begin; b < end && first_fault[chunk] == none; ++b) {
+                if (!rigid_[b].fixed && !asleep_[b] && !rigid_body_fault(rigid_[b], rigid_state(b)).empty()) first_fault[chunk] = b;
+            }
+        });
+        const std::size_t b = *std::min_element(first_fault.begin(), first_fault.end());
+        if (b != none) what = rigid_body_fault(rigid_[b], rigid_state(b));
     }
     // Past its stability limit a body need not fly apart: the fastest mode (the uniform
     // expansion) can grow until the springs turn the body inside out and cap it, leaving it
@@ -91,10 +100,12 @@ void World::check_divergence() {
     // never negative), far above the total at the last outside change was made by the step.
     // Only flagged when the step is past its estimated limit: explicit Euler gains energy on
     // purpose even where no mode grows exponentially (a particle in free fall).
-    if (what.empty() && !grab_ && !energy_baseline_stale_) {
+    // (The step's limit first: it costs a few operations a soft body and spring, where the
+    // energy is a sum over every body, every tick, on one thread.)
+    if (what.empty() && !grab_ && !energy_baseline_stale_ && !stability().stable) {
         const double E = kinetic_plus_gravity();
         const double allowed = energy_baseline_ + kEnergyGrowth * energy_scale_ + 1e-9 * std::abs(energy_baseline_);
-        if (E > allowed && !stability().stable) {
+        if (E > allowed) {
             what = std::string(soft_.size() + rigid_.size() > 1 ? "the bodies'" : "the body's") +
                    " kinetic and gravitational energy reached " + fixed(E, 1) + " J, from a total of " +
                    fixed(energy_baseline_, 1) + " J with nothing to supply more";
