@@ -182,33 +182,41 @@ void World::evaluate_forces(int stage, bool record_contacts) {
     // Rigid bodies: the net force and torque (Eq. 26, 27, 33), then Listing 9's derivative.
     const std::vector<double>& y = stage == 0 ? y_ : y_stage_;
     const bool momenta_only = settings_.integrator == Integrator::Verlet || settings_.integrator == Integrator::SymplecticEuler;
-    for (std::size_t b = 0; b < rigid_.size(); ++b) {
-        const RigidBody& body = rigid_[b];
-        const double* state = &y[b * rigid::kStateSize];
-        if (asleep_[b]) {
-            // Not integrated: P and L are 0 and stay so, so x and q do not move (sleep.h).
-            std::fill_n(&k_[stage][b * rigid::kStateSize], rigid::kStateSize, 0.0);
-            continue;
-        }
-        Wrench w;
-        if (!body.fixed) {
-            // The motion (velocities, world inertia) only for the forces that depend on it.
-            const bool grabbed = grab_ && grab_->rigid && grab_->body == b;
-            const bool dragged = body.drag_coefficient > 0.0f && settings_.air_density > 0.0f;
-            const RigidMotion m = grabbed || dragged ? softbody::rigid_motion(body, state) : RigidMotion{};
-            add_rigid_gravity(w, body, settings_.gravity);
-            if (grabbed) add_rigid_grab(w, body, m, *grab_, h);
-            if (!links_.empty()) {
-                w.F += link_force_on_rigid_[b];
-                w.tau += link_torque_on_rigid_[b];
-            }
-            if (dragged) add_rigid_drag(w, body, m, settings_.air_density, h);
-        }
-        // Symplectic Euler and Verlet take only the momenta's rates (they move x and q
-        // themselves: symplectic_positions); the others the whole of Listing 9's derivative.
-        if (momenta_only) rigid_momentum_derivative(body, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
-        else rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
+    // Each body on its own: on every thread (the same bits at any count).
+    for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) rigid_forces(stage, b, y, momenta_only);
+    });
+}
+
+// Body b's net force and torque (Eq. 26, 27, 33) from state y, then Listing 9's derivative into
+// k_[stage] (the momenta's rates alone when the integrator moves x and q itself).
+void World::rigid_forces(int stage, std::size_t b, const std::vector<double>& y, bool momenta_only) {
+    const float h = settings_.dt / static_cast<float>(substeps_);
+    const RigidBody& body = rigid_[b];
+    const double* state = &y[b * rigid::kStateSize];
+    if (asleep_[b]) {
+        // Not integrated: P and L are 0 and stay so, so x and q do not move (sleep.h).
+        std::fill_n(&k_[stage][b * rigid::kStateSize], rigid::kStateSize, 0.0);
+        return;
     }
+    Wrench w;
+    if (!body.fixed) {
+        // The motion (velocities, world inertia) only for the forces that depend on it.
+        const bool grabbed = grab_ && grab_->rigid && grab_->body == b;
+        const bool dragged = body.drag_coefficient > 0.0f && settings_.air_density > 0.0f;
+        const RigidMotion m = grabbed || dragged ? softbody::rigid_motion(body, state) : RigidMotion{};
+        add_rigid_gravity(w, body, settings_.gravity);
+        if (grabbed) add_rigid_grab(w, body, m, *grab_, h);
+        if (!links_.empty()) {
+            w.F += link_force_on_rigid_[b];
+            w.tau += link_torque_on_rigid_[b];
+        }
+        if (dragged) add_rigid_drag(w, body, m, settings_.air_density, h);
+    }
+    // Symplectic Euler and Verlet take only the momenta's rates (they move x and q
+    // themselves: symplectic_positions); the others the whole of Listing 9's derivative.
+    if (momenta_only) rigid_momentum_derivative(body, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
+    else rigid_derivative(body, state, w.F, w.tau, &k_[stage][b * rigid::kStateSize]);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -241,7 +249,10 @@ void World::step(float h) {
             }
             // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
             if (!rigid_.empty()) {
-                flat_euler_momenta(y_, k_[0], hd);
+                for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+                    const std::size_t from = begin * rigid::kStateSize, count = (end - begin) * rigid::kStateSize;
+                    flat_euler_momenta(std::span<double>(y_).subspan(from, count), std::span<const double>(k_[0]).subspan(from, count), hd);
+                });
                 symplectic_positions(rigid_, y_step_start_, y_, hd, asleep_, pool_.get());
             }
             break;

@@ -318,6 +318,7 @@ private:
     void update_contact_substeps();
     ContactWorld contact_world();
     void evaluate_forces(int stage, bool record_contacts);
+    void rigid_forces(int stage, std::size_t b, const std::vector<double>& y, bool momenta_only);
     void evaluate_links(int stage);
     double link_inverse_mass(const Link& link) const;
     void check_divergence();
