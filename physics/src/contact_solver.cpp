@@ -235,7 +235,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (!world.asleep.empty() && world.asleep[std::size_t(b)]) return 0;  // asleep: as still as a fixed body
         std::int32_t& at = rigid_index_[std::size_t(b)];
         if (at == 0) {
-            Body s;
+            at = std::int32_t(bodies_.size());
+            Body& s = bodies_.emplace_back();  // (built in place: a body is a few hundred bytes)
             s.kind = Body::Kind::Rigid;
             s.index = std::uint32_t(b);
             s.inv_mass = body.inv_mass;
@@ -243,8 +244,6 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
             s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
             s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
             s.round = body.shape == ShapeKind::Sphere;
-            at = std::int32_t(bodies_.size());
-            bodies_.push_back(s);
         }
         return std::uint32_t(at);
     };
@@ -254,14 +253,13 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (p.inv_mass[i] == 0.0f) return 0;  // pinned: it does not move
         if (map.empty()) map.assign(world.particle_step_start_v[std::size_t(soft)]->size(), 0);
         if (map[i] == 0) {
-            Body s;
+            map[i] = std::int32_t(bodies_.size());
+            Body& s = bodies_.emplace_back();
             s.kind = Body::Kind::Particle;
             s.index = i;
             s.soft = soft;
             s.inv_mass = p.inv_mass[i];
             s.x0 = s.x = {p.x[i], p.y[i], p.z[i]};
-            map[i] = std::int32_t(bodies_.size());
-            bodies_.push_back(s);
         }
         return std::uint32_t(map[i]);
     };
@@ -529,17 +527,31 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
     for (int k = 1; k < 3; ++k) {
         if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
     }
-    // (Sorted as place and body side by side: compared through the bodies, each a few hundred
-    // bytes from the next, the sort waited on memory.)
+    // A body's slab is its rank r in (place, body) order over kBlocks: slab c holds ranks from
+    // ceil(c N / kBlocks) on. Only where those edges fall is needed, not the whole order: each
+    // found by selection (halves first, then quarters, eighths), each part then holding the
+    // bodies of its ranks. (Place and body side by side: compared through the bodies, each a
+    // few hundred bytes from the next, a sort of them waited on memory.)
     std::vector<std::pair<double, std::uint32_t>>& by_place = buffers_.by_place;
-    resize_with_room(by_place, n > 0 ? n - 1 : 0);
+    const std::size_t moving = n > 0 ? n - 1 : 0;
+    resize_with_room(by_place, moving);
     for (std::size_t b = 1; b < n; ++b) by_place[b - 1] = {bodies_[b].x0[axis], std::uint32_t(b)};
-    std::sort(by_place.begin(), by_place.end());
+    const auto edge = [&](std::size_t c) { return std::ptrdiff_t((c * moving + kBlocks - 1) / kBlocks); };
+    const auto cut = [&](const auto& self, std::size_t first, std::size_t last) -> void {
+        if (last - first < 2) return;
+        const std::size_t middle = (first + last) / 2;
+        std::nth_element(by_place.begin() + edge(first), by_place.begin() + edge(middle), by_place.begin() + edge(last));
+        self(self, first, middle);
+        self(self, middle, last);
+    };
+    cut(cut, 0, kBlocks);
     std::vector<std::uint32_t>& slab = buffers_.slab;
     slab.clear();
     reserve_with_room(slab, n);
     slab.resize(n, 0);
-    for (std::size_t r = 0; r < by_place.size(); ++r) slab[by_place[r].second] = std::uint32_t(r * kBlocks / by_place.size());
+    for (std::size_t c = 0; c < kBlocks; ++c) {
+        for (std::ptrdiff_t r = edge(c); r < edge(c + 1); ++r) slab[by_place[std::size_t(r)].second] = std::uint32_t(c);
+    }
     // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
     // (the last group); then laid out group after group, each in order.
     std::vector<std::uint32_t> &group = buffers_.group, &count = buffers_.count;
@@ -1132,10 +1144,14 @@ void ContactSolver::forget_bounced() {
 // (solve_block), the round of manifolds a few times for those that share a body; then no more
 // energy than the island's contacts took this tick.
 void ContactSolver::restitute(bool after_positions) {
-    std::vector<std::uint32_t> islands;
-    for (const Manifold& m : manifolds_) {
-        if (m.bouncing) islands.push_back(m.island);
+    // The bouncing manifolds, in the order the rounds take them (as found), and their islands.
+    std::vector<std::uint32_t>& bouncing = buffers_.bouncing;
+    bouncing.clear();
+    for (const std::uint32_t at : found_order_) {
+        if (manifolds_[at].bouncing) bouncing.push_back(at);
     }
+    std::vector<std::uint32_t> islands;
+    for (const std::uint32_t at : bouncing) islands.push_back(manifolds_[at].island);
     std::sort(islands.begin(), islands.end());
     islands.erase(std::unique(islands.begin(), islands.end()), islands.end());
     // The bodies of those islands and their velocities before the bounce.
@@ -1151,9 +1167,8 @@ void ContactSolver::restitute(bool after_positions) {
         if (!after_positions) W_before[island_of_[touched[k]]] += work(s, false);
     }
     for (int round = 0; round < settings_.restitution_passes; ++round) {
-        for (const std::uint32_t at : found_order_) {
+        for (const std::uint32_t at : bouncing) {
             Manifold& m = manifolds_[at];
-            if (!m.bouncing) continue;
             Body &A = bodies_[m.a], &B = bodies_[m.b];
             // The bouncing points only: the others stay as the solve left them.
             int index[4], n = 0;
@@ -1217,8 +1232,9 @@ void ContactSolver::restitute(bool after_positions) {
                 s.v = before[k].first + (s.v - before[k].first) * alpha;
                 s.w = before[k].second + (s.w - before[k].second) * alpha;
             }
-            for (Manifold& m : manifolds_) {
-                if (!m.bouncing || m.island != island) continue;
+            for (const std::uint32_t at : bouncing) {
+                const Manifold& m = manifolds_[at];
+                if (m.island != island) continue;
                 for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce_impulse *= alpha;
             }
         }
@@ -1230,9 +1246,8 @@ void ContactSolver::restitute(bool after_positions) {
         }
     }
     // Only a bouncing manifold's points have a bounce impulse.
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        const Manifold& m = manifolds_[i];
-        if (!m.bouncing) return;
+    parallel(bouncing.size(), kManifoldGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[bouncing[i]];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].total_bounce += points_[k].bounce_impulse;
     });
 }
@@ -1286,8 +1301,8 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
     });
     const bool due = any_due.load();
     if (due) {
-        for (std::size_t b = 1; b < bodies_.size(); ++b) {
-            Body& s = bodies_[b];
+        parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
+            Body& s = bodies_[i + 1];
             if (s.kind == Body::Kind::Rigid) {
                 const double* y = &world.state[s.index * rigid::kStateSize];
                 s.L_free = Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};
@@ -1300,7 +1315,7 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
             }
             s.v = s.v_free;
             s.w = s.w_free;
-        }
+        });
         restitute(true);
         forget_bounced();
         store(world);

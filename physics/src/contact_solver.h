@@ -260,9 +260,9 @@ private:
         std::uint32_t contact = 0, count = 0, a = 0, b = 0;
     };
     void slabs(std::span<const FoundManifold> found);
-    // What prepare() and slabs() work with and drop, kept from tick to tick with its memory
-    // (kept_memory.h): the last tick's contacts by key, which of them each contact takes over,
-    // the manifolds as found, the slabs' and the islands' working lists.
+    // What prepare(), slabs() and restitute() work with and drop, kept from tick to tick with its
+    // memory (kept_memory.h): the last tick's contacts by key, which of them each contact takes
+    // over, the manifolds as found, the slabs', the islands' and the bounces' working lists.
     struct Buffers {
         std::vector<ContactRun> runs;
         std::vector<std::pair<ContactKey, std::uint32_t>> last;
@@ -275,6 +275,7 @@ private:
         std::vector<std::int64_t> number;
         std::vector<std::pair<double, std::uint32_t>> by_place;
         std::vector<std::uint32_t> slab, group, count, at;
+        std::vector<std::uint32_t> bouncing;  // restitute()'s manifolds
     };
     void solve_manifold(Manifold& m, bool bias);
     void warm_start(Manifold& m);
