@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "kept_memory.h"
+#include "nearly_sorted.h"
 #include "physics/portable_math.h"
 
 namespace softbody {
@@ -18,35 +19,14 @@ namespace {
 using Key = ContactKey;
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
-// Sorts `items` by `less`, a strict total order, where they come as a few stretches already in
-// order: a tick's contacts are the broad phase's pairs in order, then the ground's, then the
-// particles' (in bin:1000, some 1,500 runs of one pair in 6 to 8 stretches). The stretches are
-// merged, two neighbours at a time, and the result is the sort's, in a fraction of its work.
-template <class T, class Less>
-void sort_nearly_sorted(std::vector<T>& items, const Less& less) {
-    std::vector<std::size_t> edges{0};
-    for (std::size_t i = 1; i < items.size(); ++i) {
-        if (less(items[i], items[i - 1])) edges.push_back(i);
-    }
-    edges.push_back(items.size());
-    while (edges.size() > 2) {
-        std::vector<std::size_t> merged{0};
-        for (std::size_t k = 0; k + 2 < edges.size(); k += 2) {
-            std::inplace_merge(items.begin() + std::ptrdiff_t(edges[k]), items.begin() + std::ptrdiff_t(edges[k + 1]),
-                               items.begin() + std::ptrdiff_t(edges[k + 2]), less);
-            merged.push_back(edges[k + 2]);
-        }
-        if (edges.size() % 2 == 0) merged.push_back(edges.back());  // an odd stretch left over
-        edges.swap(merged);
-    }
-}
-
 // The contacts' keys with their places, sorted (by key, then place). A list of contacts comes as
 // runs of one pair's points (RigidContact's order), a few points each: the runs are sorted by
 // their pair, then each pair's points by feature, a few at a time. The same order as sorting
-// every point at once, with a quarter of the items to sort. Into `keys`, with `runs` to work in
-// (both kept from call to call).
-void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactRun>& runs, std::vector<std::pair<Key, std::uint32_t>>& keys) {
+// every point at once, with a quarter of the items to sort; and each pair's keys are written and
+// sorted in their own place, on every thread (`at`: where each run's keys begin). Into `keys`,
+// with `runs` and `at` to work in (all kept from call to call).
+void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactRun>& runs, std::vector<std::uint32_t>& at,
+                 std::vector<std::pair<Key, std::uint32_t>>& keys, ThreadPool* pool) {
     using Run = ContactRun;
     runs.clear();
     for (std::size_t k = 0; k < contacts.size();) {
@@ -57,18 +37,25 @@ void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactR
         k = end;
     }
     sort_nearly_sorted(runs, [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
-    keys.clear();
-    reserve_with_room(keys, contacts.size());
-    for (std::size_t r = 0; r < runs.size();) {
-        // The runs of one pair (one, unless its points were more than a manifold holds).
-        const std::size_t from = keys.size();
-        std::size_t end = r;
-        for (; end < runs.size() && runs[end].pair == runs[r].pair; ++end) {
-            for (std::uint32_t k = runs[end].first; k < runs[end].first + runs[end].count; ++k) keys.push_back({key_of(contacts[k]), k});
+    resize_with_room(at, runs.size() + 1);
+    at[0] = 0;
+    for (std::size_t r = 0; r < runs.size(); ++r) at[r + 1] = at[r] + runs[r].count;
+    resize_with_room(keys, contacts.size());
+    // Each pair from the run it starts at (one run, unless its points were more than a manifold
+    // holds), by the thread whose chunk holds that run.
+    for_chunks(pool, runs.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            if (r > 0 && runs[r - 1].pair == runs[r].pair) continue;  // not where its pair starts
+            std::size_t last = r;
+            for (; last < runs.size() && runs[last].pair == runs[r].pair; ++last) {
+                for (std::uint32_t j = 0; j < runs[last].count; ++j) {
+                    const std::uint32_t k = runs[last].first + j;
+                    keys[at[last] + j] = {key_of(contacts[k]), k};
+                }
+            }
+            std::sort(keys.begin() + at[r], keys.begin() + at[last]);
         }
-        std::sort(keys.begin() + std::ptrdiff_t(from), keys.end());
-        r = end;
-    }
+    });
 }
 
 // A body whose angular velocity would be wrong by more than this (m/s, at its surface) with its
@@ -270,7 +257,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // within kSamePoint that no other took. Sorted by key, in log time.
     // The keys are sorted with the contact's place (sorted_keys), so that equal keys too come in
     // one order on every run.
-    sorted_keys(previous, kept.runs, kept.last);
+    sorted_keys(previous, kept.runs, kept.run_at, kept.last, world.pool);
     const std::vector<std::pair<Key, std::uint32_t>>& last = kept.last;
     std::vector<char>& taken = kept.taken;
     taken.clear();

@@ -265,6 +265,7 @@ private:
     // over, the manifolds as found, the slabs', the islands' and the bounces' working lists.
     struct Buffers {
         std::vector<ContactRun> runs;
+        std::vector<std::uint32_t> run_at;
         std::vector<std::pair<ContactKey, std::uint32_t>> last;
         std::vector<char> taken;
         std::vector<std::int64_t> match;

@@ -6,6 +6,7 @@
 #include "collide_internal.h"
 #include "ground_contact.h"
 #include "kept_memory.h"
+#include "nearly_sorted.h"
 
 namespace softbody {
 
@@ -184,7 +185,9 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
         }
         scratch.cache.points.insert(scratch.cache.points.end(), scratch.new_points[chunk].begin(), scratch.new_points[chunk].end());
     }
-    std::sort(scratch.cache.pairs.begin(), scratch.cache.pairs.end(), [](const CachedPair& x, const CachedPair& y) { return x.key < y.key; });
+    // (In the pairs' order already, but for a moving body paired with a fixed one of lower
+    // index, and for those a wake joins: a few stretches, merged.)
+    sort_nearly_sorted(scratch.cache.pairs, [](const CachedPair& x, const CachedPair& y) { return x.key < y.key; });
 }
 
 }  // namespace
