@@ -92,29 +92,39 @@ void World::wake_all() {
 // the solver warm-starts from. True when any woke: their contacts are to be found now.
 bool World::wake_touched_islands() {
     if (sleep_.sleeping == 0) return false;
+    // Each contact on its own, on every thread; the islands to wake are a set (wake_islands sorts
+    // them), so the chunks' lists join in any order.
+    std::vector<std::vector<std::uint32_t>> touched(std::size_t(4 * pool_->threads()));
+    for_chunks(pool_.get(), contacts_.size(), 512, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        touched[chunk].clear();
+        for (std::size_t k = begin; k < end; ++k) islands_touched(contacts_[k], touched[chunk]);
+    });
     std::vector<std::uint32_t> islands;
-    const double dt = settings_.dt;
-    for (const RigidContact& c : contacts_) {
-        const bool rigid_pair = c.soft < 0 && c.b >= 0 && !rigid_[c.a].fixed && !rigid_[std::size_t(c.b)].fixed;
-        if (rigid_pair && asleep_[c.a] != asleep_[std::size_t(c.b)]) {
-            // Between two rigid bodies, one awake: how far its point comes at the other in the
-            // tick, from its velocity as the tick begins and the weight along the normal (n
-            // points out of b toward a).
-            const bool a_awake = !asleep_[c.a];
-            const Vec3d arm = a_awake ? c.arm_a : c.arm_b;
-            const RigidMotion m = rigid_motion(a_awake ? c.a : std::size_t(c.b));
-            const double toward = a_awake ? -1.0 : 1.0;  // the awake side closes the gap moving along toward * n
-            const double approach = toward * dot(m.v + cross(m.omega, arm), c.normal);
-            const double fall = toward * dot(Vec3d(settings_.gravity), c.normal);
-            const double reach = std::max(approach, 0.0) * dt + 0.5 * std::max(fall, 0.0) * dt * dt;
-            if (c.separation - reach > kSleepTouch) continue;  // it stays asleep: static to the awake one
-        }
-        if (c.soft < 0 && asleep_[c.a]) islands.push_back(sleep_.island[c.a]);
-        if (c.b >= 0 && asleep_[std::size_t(c.b)] && (c.soft < 0 || particle_coming(soft_, c))) islands.push_back(sleep_.island[std::size_t(c.b)]);
-    }
+    for (const std::vector<std::uint32_t>& some : touched) islands.insert(islands.end(), some.begin(), some.end());
     if (islands.empty()) return false;
     wake_islands(std::move(islands), previous_contacts_);
     return true;
+}
+
+// The sleeping islands contact c wakes, onto `out`.
+void World::islands_touched(const RigidContact& c, std::vector<std::uint32_t>& out) const {
+    const double dt = settings_.dt;
+    const bool rigid_pair = c.soft < 0 && c.b >= 0 && !rigid_[c.a].fixed && !rigid_[std::size_t(c.b)].fixed;
+    if (rigid_pair && asleep_[c.a] != asleep_[std::size_t(c.b)]) {
+        // Between two rigid bodies, one awake: how far its point comes at the other in the
+        // tick, from its velocity as the tick begins and the weight along the normal (n
+        // points out of b toward a).
+        const bool a_awake = !asleep_[c.a];
+        const Vec3d arm = a_awake ? c.arm_a : c.arm_b;
+        const RigidMotion m = rigid_motion(a_awake ? c.a : std::size_t(c.b));
+        const double toward = a_awake ? -1.0 : 1.0;  // the awake side closes the gap moving along toward * n
+        const double approach = toward * dot(m.v + cross(m.omega, arm), c.normal);
+        const double fall = toward * dot(Vec3d(settings_.gravity), c.normal);
+        const double reach = std::max(approach, 0.0) * dt + 0.5 * std::max(fall, 0.0) * dt * dt;
+        if (c.separation - reach > kSleepTouch) return;  // it stays asleep: static to the awake one
+    }
+    if (c.soft < 0 && asleep_[c.a]) out.push_back(sleep_.island[c.a]);
+    if (c.b >= 0 && asleep_[std::size_t(c.b)] && (c.soft < 0 || particle_coming(soft_, c))) out.push_back(sleep_.island[std::size_t(c.b)]);
 }
 
 // At the end of a tick: each awake body's rest time, the islands, and those that fall asleep.

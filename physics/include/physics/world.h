@@ -310,6 +310,7 @@ private:
     void add_woken_contacts(double reach, const std::vector<std::uint8_t>& was_asleep);
     void reset_sleep();
     bool wake_touched_islands();
+    void islands_touched(const RigidContact& c, std::vector<std::uint32_t>& out) const;
     void wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidContact>& warm);
     void update_sleep();
     int begin_contacts(double interval, int steps);
