@@ -314,7 +314,7 @@ private:
     void wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidContact>& warm);
     void update_sleep();
     int begin_contacts(double interval, int steps);
-    int contact_intervals(double time) const;
+    int contact_intervals(double time);
     int soft_contact_substeps(double part);
     void update_contact_substeps();
     ContactWorld contact_world();
@@ -345,6 +345,7 @@ private:
     std::vector<Vec3d> link_force_on_rigid_, link_torque_on_rigid_;
     std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
     std::vector<RigidContact> contacts_, previous_contacts_;
+    std::vector<std::uint8_t> contact_touching_;   // which rigid bodies have a contact (contact_intervals)
     std::unique_ptr<RigidContactScratch> rigid_contact_scratch_;  // the broad phase's buffers
     std::unique_ptr<ContactSolver> solver_;
     std::unique_ptr<SoftContacts> soft_contacts_;  // soft against soft (soft_contacts.h)
