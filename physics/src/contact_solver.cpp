@@ -157,10 +157,14 @@ void ContactSolver::setup(Manifold& m) {
     for (int d = 0; d < 2; ++d) {
         m.ft_a[d] = cross(r_a, m.t[d]);
         m.ft_b[d] = cross(r_b, m.t[d]);
-        const double k_t = A.inv_mass + B.inv_mass + dot(m.ft_a[d], A.inv_I * m.ft_a[d]) + dot(m.ft_b[d], B.inv_I * m.ft_b[d]);
+        m.fw_a[d] = A.inv_I * m.ft_a[d];
+        m.fw_b[d] = B.inv_I * m.ft_b[d];
+        const double k_t = A.inv_mass + B.inv_mass + dot(m.ft_a[d], m.fw_a[d]) + dot(m.ft_b[d], m.fw_b[d]);
         m.tangent_mass[d] = k_t > 0.0 ? 1.0 / k_t : 0.0;
     }
-    const double k_twist = dot(m.n, A.inv_I * m.n) + dot(m.n, B.inv_I * m.n);
+    m.nw_a = A.inv_I * m.n;
+    m.nw_b = B.inv_I * m.n;
+    const double k_twist = dot(m.n, m.nw_a) + dot(m.n, m.nw_b);
     m.twist_mass = m.twist_radius > 0.0 && k_twist > 0.0 ? 1.0 / k_twist : 0.0;
     if (m.twist_mass == 0.0) m.twist = 0.0;  // one point (or none turning): no turn to hold
     m.roll_mass = m.roll_arm > 0.0 ? (A.inv_I + B.inv_I).inverse() : Mat3{};
@@ -683,23 +687,30 @@ void ContactSolver::separate(const Manifold& m, bool moved) {
     const double inv_h = 1.0 / h_;
     const Body &A = bodies_[m.a], &B = bodies_[m.b];
     const double v_lin = moved ? 0.0 : dot(A.v_free - B.v_free, m.n);
+    // A point's gap closes by (d_a - d_b) . n, each side's anchor moved by d = dp + (turn - 1) r0;
+    // and (turn - 1) r0 . n = r0 . (turn^T - 1) n. So each side's (turn^T - 1) n once a
+    // manifold, and a dot product a point (not a matrix product each).
+    const auto along = [&](const Body& s, const Mat3& turn) { return s.kind == Body::Kind::Rigid ? turn.transposed() * m.n - m.n : Vec3d{}; };
+    const Vec3d u_a = along(A, A.turn), u_b = along(B, B.turn);
+    const double shift = dot(A.dp - B.dp, m.n);
+    Vec3d u_a_free, u_b_free;
+    double shift_free = 0.0;
+    if (!moved) {
+        u_a_free = along(A, A.turn_free);
+        u_b_free = along(B, B.turn_free);
+        shift_free = dot(A.dp_free - B.dp_free, m.n);
+    }
     for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
         GapPoint& g = gap_[k];
         PassPoint& q = pass_[k];
-        Vec3d d = A.dp - B.dp;
-        if (A.kind == Body::Kind::Rigid) d += A.turn * g.r_a0 - g.r_a0;
-        if (B.kind == Body::Kind::Rigid) d -= B.turn * g.r_b0 - g.r_b0;
-        const double s = g.s0 + dot(d, m.n);
+        const double s = g.s0 + shift + dot(g.r_a0, u_a) - dot(g.r_b0, u_b);
         q.s = s;
         if (moved) {
             g.s_moved = s;
             continue;
         }
         g.s_start = s;
-        Vec3d d_free = A.dp_free - B.dp_free;
-        if (A.kind == Body::Kind::Rigid) d_free += A.turn_free * g.r_a0 - g.r_a0;
-        if (B.kind == Body::Kind::Rigid) d_free -= B.turn_free * g.r_b0 - g.r_b0;
-        const double closing = (g.s0 + dot(d_free, m.n) - s) * inv_h;
+        const double closing = (g.s0 + shift_free + dot(g.r_a0, u_a_free) - dot(g.r_b0, u_b_free) - s) * inv_h;
         q.offset = closing - (v_lin + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b));
     }
 }
@@ -903,11 +914,11 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
         const Vec3d j = m.t[0] * d0 + m.t[1] * d1;
         if (m.a != 0) {
             A.v += j * A.inv_mass;
-            A.w += A.inv_I * (m.ft_a[0] * d0 + m.ft_a[1] * d1);
+            A.w += m.fw_a[0] * d0 + m.fw_a[1] * d1;
         }
         if (m.b != 0) {
             B.v -= j * B.inv_mass;
-            B.w -= B.inv_I * (m.ft_b[0] * d0 + m.ft_b[1] * d1);
+            B.w -= m.fw_b[0] * d0 + m.fw_b[1] * d1;
         }
         if (m.twist_mass > 0.0) {
             const double twist_limit = limit * m.twist_radius;
@@ -915,10 +926,10 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
             const double d = turn - m.twist;
             m.twist = turn;
             if (m.a != 0) {
-                A.w += A.inv_I * (m.n * d);
+                A.w += m.nw_a * d;
             }
             if (m.b != 0) {
-                B.w -= B.inv_I * (m.n * d);
+                B.w -= m.nw_b * d;
             }
         }
         if (pass + 1 == coupling_passes) break;

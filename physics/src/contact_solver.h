@@ -210,6 +210,8 @@ struct SolverManifold {
     // Friction, at the points' centre: its anchors' r x t, effective masses, and impulses
     // (this substep's, warm-started; over the tick); the turn about n and its reach.
     Vec3d ft_a[2], ft_b[2];
+    Vec3d fw_a[2], fw_b[2];      // J^-1 (r x t): the turn a unit friction impulse gives each side
+    Vec3d nw_a, nw_b;            // J^-1 n: the turn a unit twist gives each side
     double tangent_mass[2] = {0.0, 0.0};
     double friction[2] = {0.0, 0.0}, total_friction[2] = {0.0, 0.0};  // (the total: totals())
     double twist_mass = 0.0, twist_radius = 0.0, twist = 0.0;
