@@ -629,6 +629,19 @@ void ContactSolver::refresh(const ContactWorld& world) {
         if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) return;
         const RigidBody& body = world.bodies[s.index];
         const Vec3d L = s.L_free + s.I * (s.w - s.w_free);
+        // First a bound, without the new inertia. J^-1's isotropic part (1 / I_max) turns into
+        // itself, so the change R J^-1 R^T - R0 J^-1 R0^T is at most 2 |R - R0| (1 / I_min -
+        // 1 / I_max), and |R - R0| = 2 sin(theta/2) for the turn theta between them; plus the
+        // rounding of the products below. Where even twice that keeps the error under
+        // kStaleSpeed, so would the test below: a ball or a cube (isotropic), a body resting or
+        // turning slowly, skips two matrix products.
+        const Vec3d& moments = body.principal_moments;
+        if (moments.x > 0.0) {
+            const Quat turn = s.q_now * s.q_ref.conjugate();
+            const double sin_half = std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z) / (s.q_now.norm() * s.q_ref.norm());
+            const double spread = 1.0 / moments.x - 1.0 / moments.z, rounding = 1e-12 / moments.x;
+            if ((8.0 * sin_half * spread + rounding) * length(L) * body.bounding_radius < kStaleSpeed) return;
+        }
         const Mat3 R = rotation_of(s.q_now);
         const Mat3 inv_I = R * body.J_body_inv * R.transposed();
         if (!(length((inv_I - s.inv_I) * L) * body.bounding_radius > kStaleSpeed)) return;
