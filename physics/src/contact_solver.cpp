@@ -106,7 +106,7 @@ Mat3 rotation_of(const Quat& q) { return q.normalized().to_matrix(); }
 // it, and the push apart would pull it out only slowly: it rolled 13 mm deep, and a small fast
 // one went through the ground.
 Mat3 anchor_turn(const SolverBody& s, const Quat& q) {
-    return s.round ? Mat3::identity() : rotation_of(q) * rotation_of(s.q0).transposed();
+    return s.round ? Mat3::identity() : rotation_of(q) * s.R0_t;
 }
 
 // q turned further by the small turn theta (world axes), its length kept.
@@ -395,6 +395,9 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         const Mat3 R = rotation_of(s.q0);
         s.inv_I = R * body.J_body_inv * R.transposed();
         s.I = R * body.J_body * R.transposed();
+        s.R0_t = R.transposed();
+        s.q_now = s.q0;
+        s.turn = anchor_turn(s, s.q0);
     });
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) { setup(manifolds_[i]); });
 
@@ -587,11 +590,12 @@ void ContactSolver::load(const ContactWorld& world) {
             s.v_start = Vec3d{y0[rigid::P], y0[rigid::P + 1], y0[rigid::P + 2]} * s.inv_mass;
             s.L_start = Vec3d{y0[rigid::L], y0[rigid::L + 1], y0[rigid::L + 2]};
             s.w_start = s.inv_I * s.L_start;
-            s.q_now = q_start;
             // Where the substep began, and where the free step took it: the positions move on from
-            // the integrator's by the contacts' share.
+            // the integrator's by the contacts' share. (Where the last substep's positions left
+            // the body, its turn is the one they found.)
+            if (!(q_start == s.q_now)) s.turn = anchor_turn(s, q_start);
+            s.q_now = q_start;
             s.dp = s.x - s.x0;
-            s.turn = anchor_turn(s, q_start);
             s.dp_free = Vec3d{y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]} - s.x0;
             s.turn_free = anchor_turn(s, q);
         } else {

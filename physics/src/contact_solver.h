@@ -137,8 +137,9 @@ struct SolverBody {
     Mat3 I;                    // J_world, its inverse
     Vec3d x0;                  // centre (or particle) as the contacts were found
     Quat q0;
+    Mat3 R0_t;                 // the rotation of q0, transposed (anchor_turn's)
     Vec3d x;                   // centre now: as the substep began, then after its positions (the arms are from it)
-    Quat q_now;                // orientation at the same moment
+    Quat q_now;                // orientation at the same moment (and `turn` is its anchor_turn)
     Quat q_ref;                // where inv_I and I were found (and the anchors placed)
     Vec3d L_free, L_start;     // angular momentum after the free step, and as the substep began
     bool refreshed = false;    // they were found again this substep
