@@ -200,7 +200,9 @@ void expect_pile_holds(const std::string& json, const std::string& name) {
 
 // The pile in both orders (before the signed contacts a particle of one cube ended up 0.45 of
 // its half-width from the other's centre, and under RK4 a particle of a cube went 0.48 of a
-// ball's radius into it). Under the sanitizers, the first order only (tests/physics/CMakeLists.txt).
+// ball's radius into it). Not in the sanitizer stage (CMakePresets.json: 56 s there, a fifth of
+// the stage's tests; the soft contacts' code runs there in the smaller soft-world tests below);
+// a sanitizer build run by hand takes the first order only (tests/physics/CMakeLists.txt).
 TEST(SoftWorlds, PilesOfEightHoldInEveryOrderUnderEveryIntegrator) {
     for (int order = 0; order < SOFTBODY_PILE_ORDERS; ++order) {
         const bool reversed = order == 1;
@@ -214,7 +216,7 @@ TEST(SoftWorlds, PilesOfEightHoldInEveryOrderUnderEveryIntegrator) {
 // fifth of its volume, its springs gaining up to 260 J under Verlet (0.5 to 0.7 of its inner
 // radius deep under every integrator). Of 24 such nudges in both orders, 5 to 8 failed under
 // each integrator; now none (measured while building this; these two failed under all four).
-// Not under the sanitizers (CMakePresets.json): the piles above run the same code there.
+// Not under the sanitizers either (CMakePresets.json).
 TEST(SoftWorlds, PilesNudgedByMillimetresHoldUnderEveryIntegrator) {
     expect_pile_holds(pile_of_eight(true, 2), "reversed, nudged 6 mm");
     expect_pile_holds(pile_of_eight(false, 7), "stiff under soft, nudged 21 mm");
