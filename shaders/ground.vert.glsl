@@ -1,8 +1,9 @@
 #version 330 core
-// A large square of the plane z = u_height, centred under the camera's target.
+// A rectangle of the plane z = u_height: the floor, a large square centred under the camera's
+// target, or the part of it the sun's shadow map reaches (renderer.cpp, draw_ground).
 uniform mat4 u_view_projection;
 uniform vec2 u_centre;
-uniform float u_half_size;
+uniform vec2 u_half_size;
 uniform float u_height;
 out vec3 v_world;
 

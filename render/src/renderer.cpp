@@ -5,9 +5,9 @@
 //   2. the sun's shadow map: depth moments of the bodies (and overlay spheres), mipmapped
 //      (draw_shadow_map)
 //   3. multisampled (begin_scene): the floor (grid, soft shadows, contact darkening:
-//      draw_ground), the solid bodies (draw_solid_bodies), the sky where nothing else is
-//      (draw_sky), the overlays and see-through soft bodies, the always-visible markers
-//      (draw_overlays)
+//      draw_ground; the shadow map read only where it reaches), the solid bodies
+//      (draw_solid_bodies), the sky where nothing else is (draw_sky), the overlays and
+//      see-through soft bodies, the always-visible markers (draw_overlays)
 //   4. resolve the samples, copy to the caller's framebuffer (resolve)
 #include "render/renderer.h"
 
@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "overlays.h"
 #include "render/deform.h"
 #include "render/shader.h"
+#include "shadow_footprint.h"
 
 namespace softbody::render {
 
@@ -138,7 +140,9 @@ struct Renderer::State {
     RendererInfo info;
     DrawTimings timings;
 
-    ShaderProgram sky, ground, body, shadow, sphere_shadow, line, sphere;
+    // The floor in two programs: `ground` where the sun's shadow map reaches, `ground_sunlit`
+    // (no lookups) elsewhere.
+    ShaderProgram sky, ground, ground_sunlit, body, shadow, sphere_shadow, line, sphere;
     gl::VertexArray empty_vao;  // for draws that make their vertices from gl_VertexID
 
     std::vector<SoftDraw> soft;
@@ -178,6 +182,8 @@ struct Renderer::State {
     SunShadow draw_shadow_map(const Appearance& look, const SceneShape& scene);
     void begin_scene(int width, int height, int samples);
     void draw_ground(const FramePass& pass, const SceneShape& scene, const SunShadow& sun);
+    void draw_floor_rect(const ShaderProgram& program, const FramePass& pass, const SceneShape& scene, const SunShadow& sun,
+                         const FloorRect& rect);
     void draw_body(const FramePass& pass, const SunShadow& sun, const MeshGpu& gpu, const glm::mat4& model,
                    const glm::mat3& normal_matrix, const glm::vec3& color, float size, float opacity, bool two_sided);
     void draw_soft_surfaces(const FramePass& pass, const SunShadow& sun, float opacity, bool two_sided);
@@ -217,6 +223,7 @@ const DrawTimings& Renderer::timings() const { return state_->timings; }
 void Renderer::State::build_programs() {
     sky = ShaderProgram("sky.vert.glsl", "sky.frag.glsl");
     ground = ShaderProgram("ground.vert.glsl", "ground.frag.glsl");
+    ground_sunlit = ShaderProgram("ground.vert.glsl", "ground_sunlit.frag.glsl");
     body = ShaderProgram("body.vert.glsl", "body.frag.glsl");
     shadow = ShaderProgram("shadow.vert.glsl", "shadow.frag.glsl");
     sphere_shadow = ShaderProgram("sphere_shadow.vert.glsl", "sphere_shadow.frag.glsl");
@@ -491,7 +498,7 @@ void Renderer::State::draw_spheres(const std::vector<SphereInstance>& spheres, c
 
 namespace {
 
-constexpr int kMaxOccluders = 16;  // as in ground.frag.glsl
+constexpr int kMaxOccluders = 16;  // as in floor.glsl
 
 SceneShape measure_scene(const Frame& frame, const std::vector<SoftDraw>& soft, const std::vector<RigidDraw>& rigid) {
     SceneShape scene;
@@ -645,33 +652,57 @@ void Renderer::State::begin_scene(int width, int height, int samples) {
 }
 
 // The floor: its grid sized to the bodies, soft shadows, and darkening under each body (its
-// occluders: ellipsoids about the largest bodies' boxes).
+// occluders: ellipsoids about the largest bodies' boxes). A large square under the camera's
+// target, drawn without the shadow map's lookups; then, where the map reaches (the bodies and
+// their shadows), that part again with them. The floor is the first thing drawn, so the second
+// pass simply replaces the first's pixels. The picture is the one a single pass would give, at
+// the cost of the lookups over a small part of the floor only: a software rasterizer runs the
+// whole lookup for every pixel, shadowed or not.
 void Renderer::State::draw_ground(const FramePass& pass, const SceneShape& scene, const SunShadow& sun) {
-    const Appearance& look = pass.frame.appearance;
     const Camera& camera = pass.frame.camera;
-    const float body_size = scene.body_size;
-    ground.use();
-    set(ground.uniform("u_view_projection"), pass.view_projection);
-    set(ground.uniform("u_centre"), glm::vec2(camera.target.x, camera.target.y));
-    set(ground.uniform("u_half_size"), std::max(camera.far_plane * 0.5f, 60.0f * body_size));
-    set(ground.uniform("u_height"), look.ground_height);
-    set(ground.uniform("u_floor_color"), kFloorColor);
-    set(ground.uniform("u_grid_major"), grid_spacing(body_size));
-    set(ground.uniform("u_fog_distance"), 3.0f * camera.distance + 12.0f * body_size);
-    const GLsizei occluders = static_cast<GLsizei>(scene.occluder_centres.size());
-    set(ground.uniform("u_occluder_count"), int(occluders));
-    if (occluders > 0) {
-        glUniform3fv(ground.uniform("u_occluder_centre"), occluders, glm::value_ptr(scene.occluder_centres[0]));
-        glUniform3fv(ground.uniform("u_occluder_axes"), occluders, glm::value_ptr(scene.occluder_axes[0]));
-    }
-    set(ground.uniform("u_occlusion"), scene.any ? 0.75f : 0.0f);
-    set_lighting(ground, pass.eye, sun.matrix, sun.on, sun.penumbra_scale, sun.normal_offset);
+    const float half = std::max(camera.far_plane * 0.5f, 60.0f * scene.body_size);
+    const FloorRect floor{glm::vec2(camera.target.x, camera.target.y), glm::vec2(half)};
     // Pushed back a little in depth: a body flattened onto the floor stays in front of it.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 4.0f);
     glBindVertexArray(empty_vao.id());
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    draw_floor_rect(ground_sunlit, pass, scene, sun, floor);
+    if (sun.on) {
+        const float height = pass.frame.appearance.ground_height;
+        const std::optional<FloorRect> reached = shadow_footprint(sun.matrix, height, sun.normal_offset);
+        const std::optional<FloorRect> shaded = reached ? overlap(*reached, floor) : std::optional<FloorRect>(floor);
+        if (shaded) {
+            glDepthFunc(GL_ALWAYS);
+            draw_floor_rect(ground, pass, scene, sun, *shaded);
+            glDepthFunc(GL_LESS);
+        }
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+// One rectangle of the floor with one of its two programs.
+void Renderer::State::draw_floor_rect(const ShaderProgram& program, const FramePass& pass, const SceneShape& scene,
+                                      const SunShadow& sun, const FloorRect& rect) {
+    const Appearance& look = pass.frame.appearance;
+    const Camera& camera = pass.frame.camera;
+    const float body_size = scene.body_size;
+    program.use();
+    set(program.uniform("u_view_projection"), pass.view_projection);
+    set(program.uniform("u_centre"), rect.centre);
+    set(program.uniform("u_half_size"), rect.half_size);
+    set(program.uniform("u_height"), look.ground_height);
+    set(program.uniform("u_floor_color"), kFloorColor);
+    set(program.uniform("u_grid_major"), grid_spacing(body_size));
+    set(program.uniform("u_fog_distance"), 3.0f * camera.distance + 12.0f * body_size);
+    const GLsizei occluders = static_cast<GLsizei>(scene.occluder_centres.size());
+    set(program.uniform("u_occluder_count"), int(occluders));
+    if (occluders > 0) {
+        glUniform3fv(program.uniform("u_occluder_centre"), occluders, glm::value_ptr(scene.occluder_centres[0]));
+        glUniform3fv(program.uniform("u_occluder_axes"), occluders, glm::value_ptr(scene.occluder_axes[0]));
+    }
+    set(program.uniform("u_occlusion"), scene.any ? 0.75f : 0.0f);
+    set_lighting(program, pass.eye, sun.matrix, sun.on, sun.penumbra_scale, sun.normal_offset);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
 // One body's surface: soft bodies with the identity model matrix, rigid ones with theirs.

@@ -1,5 +1,6 @@
 // The renderer's CPU side, without GL: normals recomputed from a deformed mesh, interpolation,
-// the springs sample, the camera, shader includes, PNG files and the image comparison.
+// the springs sample, the camera, shader includes, the shadow map's reach on the floor, PNG files
+// and the image comparison.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,12 +10,15 @@
 #include <iterator>
 #include <set>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "overlays.h"
 #include "physics/mesh.h"
 #include "render/camera.h"
 #include "render/deform.h"
 #include "render/image.h"
 #include "render/shader.h"
+#include "shadow_footprint.h"
 
 namespace softbody::render {
 namespace {
@@ -173,6 +177,64 @@ Image gradient(int w, int h) {
         }
     }
     return image;
+}
+
+// A sun map as the renderer makes one: orthographic along the sun's rays, about a sphere of
+// radius r at c, to [0,1]^3.
+glm::mat4 sun_map(glm::vec3 sun, glm::vec3 c, float r) {
+    const glm::vec3 up = std::abs(sun.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    const glm::mat4 view = glm::lookAt(c + sun * (r + 1.0f), c, up);
+    const glm::mat4 to_unit = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+    return to_unit * glm::ortho(-r, r, -r, r, 0.5f, 4.0f * r + 10.0f) * view;
+}
+
+// Every floor point whose lookup lands in the map's square is inside the rectangle (the floor
+// outside it is drawn without lookups), and the rectangle is not much larger than the square's
+// shadow on the floor: checked on a grid of points over a region four times as wide.
+TEST(ShadowFootprint, HoldsEveryPointTheMapReachesAndLittleMore) {
+    const float lift = 0.3f;  // larger than the renderer's, so that leaving it out would show
+    for (const glm::vec3 sun : {glm::normalize(glm::vec3(0.45f, -0.35f, 0.82f)), glm::normalize(glm::vec3(-1.0f, 0.2f, 0.3f)),
+                                glm::vec3(0.0f, 0.0f, 1.0f)}) {
+        for (const float height : {0.0f, -2.5f}) {
+            const glm::vec3 c(1.5f, -0.7f, height + 1.2f);
+            const float r = 1.3f;
+            const glm::mat4 map = sun_map(sun, c, r);
+            const std::optional<FloorRect> rect = shadow_footprint(map, height, lift);
+            ASSERT_TRUE(rect.has_value());
+            const float reach = 4.0f * (r + (c.z - height) / sun.z);
+            glm::vec2 low(INFINITY), high(-INFINITY);
+            int inside = 0;
+            for (int i = 0; i <= 400; ++i) {
+                for (int j = 0; j <= 400; ++j) {
+                    const glm::vec2 p = glm::vec2(c) + reach * (glm::vec2(i, j) / 200.0f - 1.0f);
+                    const glm::vec4 uv = map * glm::vec4(p, height + lift, 1.0f);
+                    if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f) continue;
+                    ++inside;
+                    low = glm::min(low, p);
+                    high = glm::max(high, p);
+                    EXPECT_LE(std::abs(p.x - rect->centre.x), rect->half_size.x) << p.x << " " << p.y;
+                    EXPECT_LE(std::abs(p.y - rect->centre.y), rect->half_size.y) << p.x << " " << p.y;
+                }
+            }
+            ASSERT_GT(inside, 100) << "the map's square reaches the floor";
+            // The grid's spacing (reach / 200) plus the 1 % margin.
+            const glm::vec2 most = 0.5f * (high - low) * 1.02f + glm::vec2(reach / 200.0f + 2e-3f);
+            EXPECT_LE(rect->half_size.x, most.x);
+            EXPECT_LE(rect->half_size.y, most.y);
+        }
+    }
+    // The sun along the floor: the map's square reaches no bounded part of it.
+    EXPECT_FALSE(shadow_footprint(sun_map(glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), 1.0f), 0.0f, lift).has_value());
+}
+
+TEST(ShadowFootprint, OverlapOfTwoRectangles) {
+    const std::optional<FloorRect> both = overlap({{0, 0}, {2, 1}}, {{1.5f, 0.5f}, {1, 1}});
+    ASSERT_TRUE(both.has_value());
+    EXPECT_FLOAT_EQ(both->centre.x, 1.25f);
+    EXPECT_FLOAT_EQ(both->half_size.x, 0.75f);
+    EXPECT_FLOAT_EQ(both->centre.y, 0.25f);
+    EXPECT_FLOAT_EQ(both->half_size.y, 0.75f);
+    EXPECT_FALSE(overlap({{0, 0}, {1, 1}}, {{3, 0}, {1, 1}}).has_value());
 }
 
 TEST(ImageCompare, IdenticalAndNoisyImagesMatch) {
