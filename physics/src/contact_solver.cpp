@@ -3,9 +3,11 @@
 #include "integrators.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <numeric>
+#include <thread>
 #include <tuple>
 
 #include "kept_memory.h"
@@ -474,32 +476,69 @@ void ContactSolver::parallel(std::size_t count, std::size_t grain, const F& f) {
 // slab belongs to it; the slabs' manifolds are solved at once, each slab's in the manifolds'
 // own order on one thread (a slab shares no moving body with another: the static world is
 // shared by all, and never written to). Then the manifolds across two neighbouring slabs, a
-// boundary's on one thread: the boundaries 0|1, 2|3, 4|5, 6|7 at once (they share no slab),
-// then 1|2, 3|4, 5|6. The few across slabs further apart follow, in their order, on one
-// thread. The order is the same whatever the thread count: the same bits at any.
+// boundary's on one thread: the boundaries 0|1, 2|3, 4|5, 6|7 (they share no slab), then 1|2,
+// 3|4, 5|6. The few across slabs further apart follow, in their order, on one thread.
+// Each group waits only for what it shares a slab with, not for a whole phase: a boundary for
+// its two slabs, and 1|2 (say) for 0|1 and 2|3 as well. So a body meets its manifolds in one
+// order, the same whatever the thread count (the same bits at any), and a thread that is done
+// with its part of a phase starts on the next one's instead of waiting for the other thread
+// (with seven boundaries on two threads, one waited a third of the second phase).
 template <class F>
 void ContactSolver::each_in_slabs(const F& f) {
     if (slab_start_.size() < kGroups + 1) return;
     const auto run_group = [&](std::size_t c) {
         for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[i]);
     };
+    // The groups before the last, in the order one thread takes them: the slabs, the boundaries
+    // from an even slab, those from an odd one.
+    constexpr std::size_t kOrdered = kGroups - 1;
+    static constexpr std::array<std::uint8_t, kOrdered> order = [] {
+        std::array<std::uint8_t, kOrdered> o{};
+        std::size_t k = 0;
+        for (std::size_t c = 0; c < kBlocks; ++c) o[k++] = std::uint8_t(c);
+        for (std::size_t c = 0; c + 1 < kBlocks; c += 2) o[k++] = std::uint8_t(kBlocks + c);
+        for (std::size_t c = 1; c + 1 < kBlocks; c += 2) o[k++] = std::uint8_t(kBlocks + c);
+        return o;
+    }();
     const bool threads = pool_ && pool_->threads() > 1 && manifolds_.size() >= kManifoldGrain * kBlocks;
-    // Groups [first, first + 2 (count - 1)] by twos.
-    const auto run_groups = [&](std::size_t first, std::size_t count) {
-        if (threads) {
-            pool_->run(count, [&](std::size_t k) { run_group(first + 2 * k); });
-        } else {
-            for (std::size_t k = 0; k < count; ++k) run_group(first + 2 * k);
-        }
-    };
-    if (threads) {
-        pool_->run(kBlocks, run_group);
-    } else {
-        for (std::size_t c = 0; c < kBlocks; ++c) run_group(c);
+    if (!threads) {
+        for (const std::uint8_t c : order) run_group(c);
+        run_group(kGroups - 1);
+        return;
     }
-    run_groups(kBlocks, kBlocks / 2);          // boundaries 0|1, 2|3, ...
-    run_groups(kBlocks + 1, kBlocks / 2 - 1);  // 1|2, 3|4, ...
-    run_group(kGroups - 1);                    // the rest
+    // Each group free (0), taken (1) or done (2).
+    std::array<std::atomic<std::uint8_t>, kOrdered> state;
+    for (std::atomic<std::uint8_t>& g : state) g.store(0, std::memory_order_relaxed);
+    const auto done = [&](std::size_t c) { return state[c].load(std::memory_order_acquire) == 2; };
+    const auto ready = [&](std::size_t c) {
+        if (c < kBlocks) return true;
+        const std::size_t low = c - kBlocks;  // the boundary low|low + 1
+        if (!done(low) || !done(low + 1)) return false;
+        if (low % 2 == 0) return true;
+        return done(c - 1) && (low + 2 >= kBlocks || done(c + 1));
+    };
+    // Every thread takes the first free group that is ready, until none is free. One that finds
+    // none ready waits for a group another is running (whatever it waits for is taken: the
+    // order lists each group after those it waits for).
+    pool_->run(std::size_t(pool_->threads()), [&](std::size_t) {
+        for (;;) {
+            bool free = false, took = false;
+            for (const std::uint8_t c : order) {
+                if (state[c].load(std::memory_order_acquire) != 0) continue;
+                free = true;
+                std::uint8_t expected = 0;
+                if (ready(c) && state[c].compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) {
+                    run_group(c);
+                    state[c].store(2, std::memory_order_release);
+                    took = true;
+                    break;
+                }
+            }
+            if (!free) return;
+            if (!took) std::this_thread::yield();
+        }
+    });
+    run_group(kGroups - 1);
 }
 
 // Why slabs and not a colouring (a graph colouring, tried first): a colour takes
