@@ -276,10 +276,16 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     match.clear();
     reserve_with_room(match, contacts.size());
     match.resize(contacts.size(), -1);
-    parallel(contacts.size(), kPointGrain, [&](std::size_t k) {
-        const Key key = key_of(contacts[k]);
-        const auto found = lower(key);
-        if (found != last.end() && found->first == key) match[k] = found->second;
+    // Each chunk's searches start from where the last one ended: the contacts come much in
+    // the order of the last tick's, so the next key is mostly a step or two on.
+    for_chunks(world.pool, contacts.size(), kPointGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        auto near = last.begin();
+        for (std::size_t k = begin; k < end; ++k) {
+            const Key key = key_of(contacts[k]);
+            near = lower_bound_from(last.begin(), last.end(), near, key,
+                                    [](const std::pair<Key, std::uint32_t>& x, const Key& want) { return x.first < want; });
+            if (near != last.end() && near->first == key) match[k] = near->second;
+        }
     });
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         if (match[k] < 0) continue;

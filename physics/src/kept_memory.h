@@ -7,7 +7,11 @@
 // page cleared. In stack:20 on one thread that was about 3,000 faults and 4% of a tick.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <vector>
+
+#include "physics/thread_pool.h"
 
 namespace softbody {
 
@@ -24,6 +28,34 @@ void resize_with_room(V& v, std::size_t n) {
 template <class V>
 void reserve_with_room(V& v, std::size_t n) {
     if (n > v.capacity()) v.reserve(n + n / 8);
+}
+
+// Appends the first `chunks` of `parts` to `out` in their order, each part copied by one of the
+// pool's threads (a pile's contacts are tens of megabytes, and copying them on one thread was
+// the longest stretch of a tick the other thread sat out), then `fix(item, c)` for each item
+// copied from part c. The same result whatever the thread count.
+template <class T, class Fix>
+void join_chunks(std::vector<T>& out, const std::vector<std::vector<T>>& parts, std::size_t chunks, ThreadPool* pool,
+                 const Fix& fix) {
+    std::vector<std::size_t> at(chunks + 1, out.size());
+    for (std::size_t c = 0; c < chunks; ++c) at[c + 1] = at[c] + parts[c].size();
+    resize_with_room(out, at[chunks]);
+    const auto copy = [&](std::size_t c) {
+        T* to = out.data() + at[c];
+        std::copy(parts[c].begin(), parts[c].end(), to);
+        for (std::size_t k = 0; k < parts[c].size(); ++k) fix(to[k], c);
+    };
+    if (pool && chunks > 1) {
+        pool->run(chunks, copy);
+    } else {
+        for (std::size_t c = 0; c < chunks; ++c) copy(c);
+    }
+}
+
+// The same with nothing to fix.
+template <class T>
+void join_chunks(std::vector<T>& out, const std::vector<std::vector<T>>& parts, std::size_t chunks, ThreadPool* pool) {
+    join_chunks(out, parts, chunks, pool, [](T&, std::size_t) {});
 }
 
 }  // namespace softbody

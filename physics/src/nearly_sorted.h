@@ -32,4 +32,37 @@ void sort_nearly_sorted(std::vector<T>& items, const Less& less) {
     }
 }
 
+// std::lower_bound(begin, end, key, less) (the first item not less than key), searched for from
+// `hint`, an iterator into [begin, end] near where it should be: outward from the hint in steps
+// that double, then by halves between the last two. The same answer as a search of the whole
+// range, in a few steps where the keys asked for come in nearly the items' own order (each one
+// a little after the last one's answer): a tick's contacts looked up among the last tick's, a
+// pair among the cached ones.
+template <class It, class Key, class Less>
+It lower_bound_from(It begin, It end, It hint, const Key& key, const Less& less) {
+    It low = begin, high = end;  // the answer is in [low, high]
+    if (hint != end && less(*hint, key)) {
+        low = hint + 1;
+        for (std::ptrdiff_t step = 1; low != end; step *= 2) {
+            const It probe = step < end - low ? low + (step - 1) : end - 1;
+            if (!less(*probe, key)) {
+                high = probe;
+                break;
+            }
+            low = probe + 1;
+        }
+    } else {
+        high = hint;
+        for (std::ptrdiff_t step = 1; high != begin; step *= 2) {
+            const It probe = step < high - begin ? high - step : begin;
+            if (less(*probe, key)) {
+                low = probe + 1;
+                break;
+            }
+            high = probe;
+        }
+    }
+    return std::lower_bound(low, high, key, less);
+}
+
 }  // namespace softbody

@@ -30,15 +30,19 @@ constexpr double kReuseMove = 1e-4;
 constexpr double kReuseTurn = 1e-3;
 
 // collide() for two hulls, or their last points carried along when they have not moved
-// relative to each other; either way the answer is noted for the next find.
+// relative to each other; either way the answer is noted for the next find. The pair's entry in
+// the cache is looked for from `near`, where the last pair's was (the pairs come in the cache's
+// order, mostly), and `near` is left at it.
 void collide_hulls_again(const RigidContactScratch& scratch, const CollisionShape& A, std::uint32_t ia, const Pose& pa,
                          const CollisionShape& B, std::uint32_t ib, const Pose& pb, double margin, std::vector<ContactPoint>& points,
-                         std::vector<CachedPair>& new_pairs, std::vector<CachedPoint>& new_points) {
+                         std::vector<CachedPair>& new_pairs, std::vector<CachedPoint>& new_points,
+                         std::vector<CachedPair>::const_iterator& near) {
     const Transform Ta = world_transform(pa), Tb = world_transform(pb);
     const Transform rel = relative_transform(Ta, Tb);
     const std::uint64_t key = (std::uint64_t(ia) << 32) | ib;
-    const auto last = std::lower_bound(scratch.cache.pairs.begin(), scratch.cache.pairs.end(), key,
-                                       [](const CachedPair& c, std::uint64_t k) { return c.key < k; });
+    near = lower_bound_from(scratch.cache.pairs.cbegin(), scratch.cache.pairs.cend(), near, key,
+                            [](const CachedPair& c, std::uint64_t k) { return c.key < k; });
+    const auto last = near;
     const auto still = [&](const CachedPair& c) {
         if (c.stamp_a != A.stamp || c.stamp_b != B.stamp || margin > c.margin + kReuseMove) return false;
         if (length(rel.x - c.x) > kReuseMove) return false;
@@ -122,6 +126,7 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
         found.clear();
         new_pairs.clear();
         new_points.clear();
+        auto near = scratch.cache.pairs.cbegin();
         for (std::size_t k = begin; k < end; ++k) {
             const BodyPair& pair = scratch.pairs[k];
             const RigidBody &A = bodies[pair.a], &B = bodies[pair.b];
@@ -139,7 +144,7 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
                 collide(shapes[ia], pose_of(sa), shapes[ib], pose_of(sb), margin, points);
             } else {
                 collide_hulls_again(scratch, shapes[ia], ia, pose_of(sa), shapes[ib], ib, pose_of(sb), margin, points, new_pairs,
-                                    new_points);
+                                    new_points, near);
             }
             if (points.empty()) continue;
             const Vec3d xa{sa[rigid::X], sa[rigid::X + 1], sa[rigid::X + 2]}, xb{sb[rigid::X], sb[rigid::X + 1], sb[rigid::X + 2]};
@@ -162,29 +167,18 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
             }
         }
     });
-    std::size_t found = 0, new_pairs = 0, new_points = 0;
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-        found += scratch.found[chunk].size();
-        new_pairs += scratch.new_pairs[chunk].size();
-        new_points += scratch.new_points[chunk].size();
-    }
-    reserve_with_room(out, out.size() + found);
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) out.insert(out.end(), scratch.found[chunk].begin(), scratch.found[chunk].end());
-    // This find's answers, by key, for the next.
+    join_chunks(out, scratch.found, chunks, pool);
+    // This find's answers, by key, for the next: each pair's first point moved on by the points
+    // of the chunks before its own, and by those already in the cache.
     if (replace_cache) {
         scratch.cache.pairs.clear();
         scratch.cache.points.clear();
     }
-    reserve_with_room(scratch.cache.pairs, scratch.cache.pairs.size() + new_pairs);
-    reserve_with_room(scratch.cache.points, scratch.cache.points.size() + new_points);
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-        const auto offset = std::uint32_t(scratch.cache.points.size());
-        for (CachedPair pair : scratch.new_pairs[chunk]) {
-            pair.first += offset;
-            scratch.cache.pairs.push_back(pair);
-        }
-        scratch.cache.points.insert(scratch.cache.points.end(), scratch.new_points[chunk].begin(), scratch.new_points[chunk].end());
-    }
+    std::vector<std::size_t> points_before(chunks, scratch.cache.points.size());
+    for (std::size_t chunk = 1; chunk < chunks; ++chunk) points_before[chunk] = points_before[chunk - 1] + scratch.new_points[chunk - 1].size();
+    join_chunks(scratch.cache.pairs, scratch.new_pairs, chunks, pool,
+                [&](CachedPair& pair, std::size_t chunk) { pair.first += std::uint32_t(points_before[chunk]); });
+    join_chunks(scratch.cache.points, scratch.new_points, chunks, pool);
     // (In the pairs' order already, but for a moving body paired with a fixed one of lower
     // index, and for those a wake joins: a few stretches, merged.)
     sort_nearly_sorted(scratch.cache.pairs, [](const CachedPair& x, const CachedPair& y) { return x.key < y.key; });

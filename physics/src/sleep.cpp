@@ -2,6 +2,7 @@
 #include "sleep.h"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 
 #include "physics/world.h"
@@ -134,12 +135,24 @@ void World::update_sleep() {
     const double dt = settings_.dt;
     // Bodies still being pushed out of an overlap deeper than a loaded contact stands: their
     // deepest contact deeper than kSleepDepth and shallower than a tick ago by kSleepDepthShrink.
+    // On every thread (a pile's contacts are tens of megabytes). A body's deepest only ever
+    // rises, to a contact's depth strictly above it, so it ends as the largest whatever order the
+    // threads take its contacts in (and +0 when none is deeper than that, as it starts).
     std::vector<double> deepest(n, 0.0);
-    for (const RigidContact& c : contacts_) {
-        if (c.soft >= 0) continue;
-        deepest[c.a] = std::max(deepest[c.a], c.depth);
-        if (c.b >= 0) deepest[std::size_t(c.b)] = std::max(deepest[std::size_t(c.b)], c.depth);
-    }
+    const auto deepen = [](double& at, double depth) {
+        std::atomic_ref<double> deepest_so_far(at);
+        double now = deepest_so_far.load(std::memory_order_relaxed);
+        while (depth > now && !deepest_so_far.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
+        }
+    };
+    for_chunks(pool_.get(), contacts_.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const RigidContact& c = contacts_[k];
+            if (c.soft >= 0) continue;
+            deepen(deepest[c.a], c.depth);
+            if (c.b >= 0) deepen(deepest[std::size_t(c.b)], c.depth);
+        }
+    });
     std::vector<std::uint8_t> overlapping(n, 0);
     for (std::size_t b = 0; b < n; ++b) {
         if (asleep_[b]) continue;

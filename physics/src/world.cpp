@@ -4,6 +4,7 @@
 #include "physics/world.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include "forces.h"
 #include "ground_contact.h"
 #include "integrators.h"
+#include "kept_memory.h"
 #include "message_text.h"
 #include "particle_contacts.h"
 #include "rigid_contacts.h"
@@ -370,7 +372,7 @@ void World::generate_contacts(double reach) {
             rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], settings_, reach, ground[chunk]);
         }
     });
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) contacts_.insert(contacts_.end(), ground[chunk].begin(), ground[chunk].end());
+    join_chunks(contacts_, ground, chunks, pool_.get());
     rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, contacts_, asleep_, pool_.get());
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, settings_, reach, contacts_);
@@ -439,10 +441,15 @@ int World::begin_contacts(double interval, int steps) {
 int World::contact_intervals(double time) {
     std::vector<std::uint8_t>& touching = contact_touching_;
     touching.assign(rigid_.size(), 0);
-    for (const RigidContact& c : contacts_) {
-        if (c.soft < 0) touching[c.a] = 1;
-        if (c.b >= 0) touching[std::size_t(c.b)] = 1;
-    }
+    // On every thread (a pile's contacts are tens of megabytes): each flag is only ever set to 1,
+    // so the order in which the threads set them does not matter.
+    for_chunks(pool_.get(), contacts_.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const RigidContact& c = contacts_[k];
+            if (c.soft < 0) std::atomic_ref<std::uint8_t>(touching[c.a]).store(1, std::memory_order_relaxed);
+            if (c.b >= 0) std::atomic_ref<std::uint8_t>(touching[std::size_t(c.b)]).store(1, std::memory_order_relaxed);
+        }
+    });
     std::vector<double> fastest_in(std::size_t(4 * pool_->threads()), 0.0);
     for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
