@@ -19,6 +19,12 @@ namespace softbody {
 namespace {
 
 using Key = ContactKey;
+
+// The least contacts worth a chunk of a scan of the list on another thread (sorted_keys(),
+// prepare()); such a scan keeps a list of what it found per chunk (for_chunks: at most four a
+// thread).
+constexpr std::size_t kScanGrain = 1024;
+std::size_t most_chunks(const ThreadPool* pool) { return 4 * std::size_t(pool ? pool->threads() : 1); }
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
 // The contacts' keys with their places, sorted (by key, then place). A list of contacts comes as
@@ -27,17 +33,30 @@ Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 // every point at once, with a quarter of the items to sort; and each pair's keys are written and
 // sorted in their own place, on every thread (`at`: where each run's keys begin). Into `keys`,
 // with `runs` and `at` to work in (all kept from call to call).
-void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactRun>& runs, std::vector<std::uint32_t>& at,
-                 std::vector<std::pair<Key, std::uint32_t>>& keys, ThreadPool* pool) {
+void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactRun>& runs, std::vector<std::vector<ContactRun>>& parts,
+                 std::vector<std::uint32_t>& at, std::vector<std::pair<Key, std::uint32_t>>& keys, ThreadPool* pool) {
     using Run = ContactRun;
+    // The runs, on every thread: each chunk of the list takes the runs that begin in it (the last
+    // may go on into the next chunk, which leaves that run's points to it).
+    const auto same_pair = [&](std::size_t j, std::size_t k) {
+        return contacts[j].soft == contacts[k].soft && contacts[j].a == contacts[k].a && contacts[j].b == contacts[k].b;
+    };
+    if (parts.size() < most_chunks(pool)) parts.resize(most_chunks(pool));
+    const std::size_t chunks = for_chunks(pool, contacts.size(), kScanGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Run>& part = parts[chunk];
+        part.clear();
+        std::size_t k = begin;
+        while (k > 0 && k < end && same_pair(k, k - 1)) ++k;  // a run begun before this chunk
+        while (k < end) {
+            const RigidContact& c = contacts[k];
+            std::size_t run_end = k + 1;
+            while (run_end < contacts.size() && same_pair(run_end, k)) ++run_end;
+            part.push_back({{c.soft, c.a, c.b}, std::uint32_t(k), std::uint32_t(run_end - k)});
+            k = run_end;
+        }
+    });
     runs.clear();
-    for (std::size_t k = 0; k < contacts.size();) {
-        const RigidContact& c = contacts[k];
-        std::size_t end = k + 1;
-        while (end < contacts.size() && contacts[end].soft == c.soft && contacts[end].a == c.a && contacts[end].b == c.b) ++end;
-        runs.push_back({{c.soft, c.a, c.b}, std::uint32_t(k), std::uint32_t(end - k)});
-        k = end;
-    }
+    join_chunks(runs, parts, chunks, pool);
     sort_nearly_sorted(runs, [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
     resize_with_room(at, runs.size() + 1);
     at[0] = 0;
@@ -263,7 +282,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // within kSamePoint that no other took. Sorted by key, in log time.
     // The keys are sorted with the contact's place (sorted_keys), so that equal keys too come in
     // one order on every run.
-    sorted_keys(previous, kept.runs, kept.run_at, kept.last, world.pool);
+    sorted_keys(previous, kept.runs, kept.run_parts, kept.run_at, kept.last, world.pool);
     const std::vector<std::pair<Key, std::uint32_t>>& last = kept.last;
     std::vector<char>& taken = kept.taken;
     taken.clear();
@@ -316,24 +335,46 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // most four, and their solver bodies in order of first appearance. Then each is built where
     // the passes take it (slabs()), its points after the last one's: every pass reads them through
     // memory in order (in stack:20 the passes read 23 MB of them 20 times a tick).
-    std::vector<FoundManifold>& found = kept.found;
-    found.clear();
-    for (std::size_t i = 0; i < contacts.size();) {
-        const RigidContact& first = contacts[i];
-        FoundManifold f;
-        f.a = first.soft >= 0 ? particle(first.soft, first.a) : rigid_body(first.a);
-        f.b = rigid_body(first.b);
-        f.contact = std::uint32_t(i);
-        std::size_t end = i + 1;
-        if (first.soft < 0) {
-            while (end < contacts.size() && end < i + kMaxManifoldPoints && contacts[end].soft < 0 &&
-                   contacts[end].a == first.a && contacts[end].b == first.b) {
-                ++end;
+    // The scan of the contacts, on every thread: each chunk takes the manifolds that begin in it
+    // (a pair's points are split into manifolds from the first of them, and the last manifold may
+    // go on into the next chunk, which leaves its points to it). Then their bodies are numbered,
+    // in the manifolds' order.
+    const auto together = [&](std::size_t j, std::size_t k) {  // points of one pair's manifolds
+        return contacts[j].soft < 0 && contacts[k].soft < 0 && contacts[j].a == contacts[k].a && contacts[j].b == contacts[k].b;
+    };
+    std::vector<std::vector<FoundPoints>>& parts = kept.found_parts;
+    if (parts.size() < most_chunks(world.pool)) parts.resize(most_chunks(world.pool));
+    const std::size_t chunks = for_chunks(world.pool, contacts.size(), kScanGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<FoundPoints>& part = parts[chunk];
+        part.clear();
+        std::size_t k = begin;
+        if (k > 0 && k < end && together(k, k - 1)) {
+            std::size_t pair_begins = k - 1;
+            while (pair_begins > 0 && together(pair_begins - 1, k)) --pair_begins;
+            const std::size_t manifold_begins = pair_begins + (k - pair_begins) / kMaxManifoldPoints * kMaxManifoldPoints;
+            if (manifold_begins < k) {
+                while (k < end && k < manifold_begins + kMaxManifoldPoints && together(k, manifold_begins)) ++k;
             }
         }
-        f.count = std::uint32_t(end - i);
-        found.push_back(f);
-        i = end;
+        while (k < end) {
+            const RigidContact& first = contacts[k];
+            std::size_t stop = k + 1;
+            while (stop < contacts.size() && stop < k + kMaxManifoldPoints && together(stop, k)) ++stop;
+            part.push_back({std::uint32_t(k), std::uint32_t(stop - k), first.soft, first.b, first.a});
+            k = stop;
+        }
+    });
+    std::vector<FoundManifold>& found = kept.found;
+    found.clear();
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        for (const FoundPoints& p : parts[chunk]) {
+            FoundManifold f;
+            f.a = p.soft >= 0 ? particle(p.soft, p.a) : rigid_body(p.a);
+            f.b = rigid_body(p.b);
+            f.contact = p.contact;
+            f.count = p.count;
+            found.push_back(f);
+        }
     }
     pool_ = world.pool;
     slabs(found);

@@ -266,8 +266,17 @@ private:
     // What prepare(), slabs() and restitute() work with and drop, kept from tick to tick with its
     // memory (kept_memory.h): the last tick's contacts by key, which of them each contact takes
     // over, the manifolds as found, the slabs', the islands' and the bounces' working lists.
+    // A manifold as the scan of the contacts finds it, before its bodies are numbered: its
+    // first contact, how many, and whose they are (RigidContact's soft, a and b).
+    struct FoundPoints {
+        std::uint32_t contact = 0, count = 0;
+        std::int32_t soft = -1, b = -1;
+        std::uint32_t a = 0;
+    };
     struct Buffers {
         std::vector<ContactRun> runs;
+        std::vector<std::vector<ContactRun>> run_parts;         // per chunk of the scan
+        std::vector<std::vector<FoundPoints>> found_parts;      // per chunk of the scan
         std::vector<std::uint32_t> run_at;
         std::vector<std::pair<ContactKey, std::uint32_t>> last;
         std::vector<char> taken;
