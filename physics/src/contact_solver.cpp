@@ -55,8 +55,7 @@ void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactR
             k = run_end;
         }
     });
-    runs.clear();
-    join_chunks(runs, parts, chunks, pool);
+    runs.resize(place_chunks(runs, 0, parts, chunks, pool));
     sort_nearly_sorted(runs, [](const Run& x, const Run& y) { return std::tie(x.pair, x.first) < std::tie(y.pair, y.first); });
     resize_with_room(at, runs.size() + 1);
     at[0] = 0;

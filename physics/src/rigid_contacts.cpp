@@ -106,11 +106,11 @@ void box_of(std::span<const RigidBody> bodies, std::span<const CollisionShape> s
 
 // The narrow phase over scratch.pairs (a pair of two quiet bodies skipped, and with `was_quiet`
 // given, a pair of which either body was not quiet then: it was tested before). The contacts
-// are appended to `out` in the pairs' order; the hull pairs' answers go to the cache, which
-// they replace (`replace_cache`) or join.
-void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes, std::span<const double> start,
-                const WorldSettings& world, RigidContactScratch& scratch, std::vector<RigidContact>& out,
-                std::span<const std::uint8_t> was_quiet, bool replace_cache, ThreadPool* pool) {
+// are written into `out` from `at` on in the pairs' order (place_chunks), and where they end
+// returned; the hull pairs' answers go to the cache, which they replace (`replace_cache`) or join.
+std::size_t test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes, std::span<const double> start,
+                       const WorldSettings& world, RigidContactScratch& scratch, std::vector<RigidContact>& out, std::size_t at,
+                       std::span<const std::uint8_t> was_quiet, bool replace_cache, ThreadPool* pool) {
     const std::size_t most = pool ? 4 * std::size_t(pool->threads()) : 1;
     if (scratch.found.size() < most) {
         scratch.found.resize(most);
@@ -167,30 +167,31 @@ void test_pairs(std::span<const RigidBody> bodies, std::span<const CollisionShap
             }
         }
     });
-    join_chunks(out, scratch.found, chunks, pool);
-    // This find's answers, by key, for the next: each pair's first point moved on by the points
-    // of the chunks before its own, and by those already in the cache.
-    if (replace_cache) {
-        scratch.cache.pairs.clear();
-        scratch.cache.points.clear();
-    }
-    std::vector<std::size_t> points_before(chunks, scratch.cache.points.size());
+    const std::size_t end = place_chunks(out, at, scratch.found, chunks, pool);
+    // This find's answers, by key, for the next (over the last find's, or after them): each
+    // pair's first point moved on by the points of the chunks before its own, and by those
+    // already in the cache.
+    const std::size_t pairs_at = replace_cache ? 0 : scratch.cache.pairs.size();
+    const std::size_t points_at = replace_cache ? 0 : scratch.cache.points.size();
+    std::vector<std::size_t> points_before(chunks, points_at);
     for (std::size_t chunk = 1; chunk < chunks; ++chunk) points_before[chunk] = points_before[chunk - 1] + scratch.new_points[chunk - 1].size();
-    join_chunks(scratch.cache.pairs, scratch.new_pairs, chunks, pool,
-                [&](CachedPair& pair, std::size_t chunk) { pair.first += std::uint32_t(points_before[chunk]); });
-    join_chunks(scratch.cache.points, scratch.new_points, chunks, pool);
+    scratch.cache.pairs.resize(place_chunks(scratch.cache.pairs, pairs_at, scratch.new_pairs, chunks, pool,
+                                            [&](CachedPair& pair, std::size_t chunk) { pair.first += std::uint32_t(points_before[chunk]); }));
+    scratch.cache.points.resize(place_chunks(scratch.cache.points, points_at, scratch.new_points, chunks, pool));
     // (In the pairs' order already, but for a moving body paired with a fixed one of lower
     // index, and for those a wake joins: a few stretches, merged.)
     sort_nearly_sorted(scratch.cache.pairs, [](const CachedPair& x, const CachedPair& y) { return x.key < y.key; });
+    return end;
 }
 
 }  // namespace
 
-void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                         std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
-                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep, ThreadPool* pool) {
+std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
+                                std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
+                                std::vector<RigidContact>& out, std::size_t at, std::span<const std::uint8_t> asleep,
+                                ThreadPool* pool) {
     const std::size_t n = bodies.size();
-    if (n < 2) return;
+    if (n < 2) return at;
     const double g = length(Vec3d(world.gravity));
     // Two bodies each asleep or fixed are not paired at all (they are not tested: sleep.h). When
     // every body is, there is nothing to find: a pile or stack asleep costs no broad phase (in
@@ -200,7 +201,7 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
         scratch.pairs.clear();
         scratch.cache.pairs.clear();  // as a find that tested no pair leaves it
         scratch.cache.points.clear();
-        return;
+        return at;
     }
     scratch.boxes.resize(n);
     scratch.margins.resize(n);
@@ -208,7 +209,7 @@ void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const Coll
         for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, b, scratch);
     });
     overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
-    test_pairs(bodies, shapes, start, world, scratch, out, {}, true, pool);
+    return test_pairs(bodies, shapes, start, world, scratch, out, at, {}, true, pool);
 }
 
 void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
@@ -240,7 +241,7 @@ void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<cons
     } else {
         overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
     }
-    test_pairs(bodies, shapes, start, world, scratch, out, was_quiet, false, pool);
+    out.resize(test_pairs(bodies, shapes, start, world, scratch, out, out.size(), was_quiet, false, pool));
 }
 
 }  // namespace softbody

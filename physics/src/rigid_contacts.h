@@ -16,7 +16,7 @@
 
 namespace softbody {
 
-// Appends every pair's contacts: each pair's boxes grown by their bodies' speculative margins
+// Every pair's contacts: each pair's boxes grown by their bodies' speculative margins
 // (ground_contact.h), overlapping pairs (two fixed bodies skipped) tested by `collide` within
 // the sum of the two margins. Restitution is the larger of the two bodies' (the bouncier one decides),
 // friction the geometric mean sqrt(mu_a mu_b); each defaults to the world's. `start`: the flat
@@ -43,10 +43,12 @@ struct RigidContactScratch {
     std::vector<std::vector<CachedPair>> new_pairs;          // per chunk, joined in order
     std::vector<std::vector<CachedPoint>> new_points;        // per chunk
 };
-void rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
-                         std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
-                         std::vector<RigidContact>& out, std::span<const std::uint8_t> asleep = {},
-                         ThreadPool* pool = nullptr);
+// They are written into `out` from `at` on, over what it holds there (a list kept from tick to
+// tick), growing it where it is short (place_chunks): the caller cuts it to the returned end.
+std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
+                                std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
+                                std::vector<RigidContact>& out, std::size_t at, std::span<const std::uint8_t> asleep = {},
+                                ThreadPool* pool = nullptr);
 
 // After rigid_body_contacts in the same find, when bodies that were asleep (`was_asleep`) have
 // woken (`asleep` now): appends the contacts of the pairs that find did not test, those of two

@@ -360,7 +360,8 @@ void World::find_contacts(double reach) {
 }
 
 void World::generate_contacts(double reach) {
-    contacts_.clear();
+    // The rigid bodies' contacts are written over the list of two finds ago (find_contacts swaps
+    // the lists), which is then cut to them.
     y_contacts_start_ = y_;
     // Each body's with the ground, on every thread in chunks joined in the bodies' order.
     std::vector<std::vector<RigidContact>>& ground = rigid_contact_scratch_->ground;
@@ -372,8 +373,9 @@ void World::generate_contacts(double reach) {
             rigid_ground_contacts(rigid_[b], std::uint32_t(b), &y_[b * rigid::kStateSize], settings_, reach, ground[chunk]);
         }
     });
-    join_chunks(contacts_, ground, chunks, pool_.get());
-    rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, contacts_, asleep_, pool_.get());
+    const std::size_t ground_end = place_chunks(contacts_, 0, ground, chunks, pool_.get());
+    contacts_.resize(rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, contacts_, ground_end, asleep_,
+                                         pool_.get()));
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, settings_, reach, contacts_);
     }
