@@ -2,7 +2,6 @@
 #include "sleep.h"
 
 #include <algorithm>
-#include <atomic>
 #include <numeric>
 
 #include "physics/world.h"
@@ -137,12 +136,19 @@ void World::update_sleep() {
     // deepest contact deeper than kSleepDepth and shallower than a tick ago by kSleepDepthShrink.
     // On every thread (a pile's contacts are tens of megabytes). A body's deepest only ever
     // rises, to a contact's depth strictly above it, so it ends as the largest whatever order the
-    // threads take its contacts in (and +0 when none is deeper than that, as it starts).
+    // threads take its contacts in (and +0 when none is deeper than that, as it starts). (The
+    // compilers' atomic built-ins: the browser build's C++ library has no std::atomic_ref.)
+    // On one thread a plain compare does (a compare-and-swap costs several times as much).
     std::vector<double> deepest(n, 0.0);
-    const auto deepen = [](double& at, double depth) {
-        std::atomic_ref<double> deepest_so_far(at);
-        double now = deepest_so_far.load(std::memory_order_relaxed);
-        while (depth > now && !deepest_so_far.compare_exchange_weak(now, depth, std::memory_order_relaxed)) {
+    const bool shared = pool_->threads() > 1;
+    const auto deepen = [shared](double& at, double depth) {
+        if (!shared) {
+            if (depth > at) at = depth;
+            return;
+        }
+        double now;
+        __atomic_load(&at, &now, __ATOMIC_RELAXED);
+        while (depth > now && !__atomic_compare_exchange(&at, &now, &depth, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
         }
     };
     for_chunks(pool_.get(), contacts_.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {

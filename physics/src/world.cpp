@@ -4,7 +4,6 @@
 #include "physics/world.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -444,12 +443,14 @@ int World::contact_intervals(double time) {
     std::vector<std::uint8_t>& touching = contact_touching_;
     touching.assign(rigid_.size(), 0);
     // On every thread (a pile's contacts are tens of megabytes): each flag is only ever set to 1,
-    // so the order in which the threads set them does not matter.
+    // so the order in which the threads set them does not matter. (The compilers' atomic
+    // built-ins: the browser build's C++ library has no std::atomic_ref.)
+    const auto touch = [&](std::size_t b) { __atomic_store_n(&touching[b], std::uint8_t{1}, __ATOMIC_RELAXED); };
     for_chunks(pool_.get(), contacts_.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             const RigidContact& c = contacts_[k];
-            if (c.soft < 0) std::atomic_ref<std::uint8_t>(touching[c.a]).store(1, std::memory_order_relaxed);
-            if (c.b >= 0) std::atomic_ref<std::uint8_t>(touching[std::size_t(c.b)]).store(1, std::memory_order_relaxed);
+            if (c.soft < 0) touch(c.a);
+            if (c.b >= 0) touch(std::size_t(c.b));
         }
     });
     std::vector<double> fastest_in(std::size_t(4 * pool_->threads()), 0.0);
