@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <thread>
 #include <tuple>
@@ -296,23 +297,41 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     match.resize(contacts.size(), -1);
     // Each chunk's searches start from where the last one ended: the contacts come much in
     // the order of the last tick's, so the next key is mostly a step or two on.
+    // A contact of the last tick goes to the first of this tick's (in their order) that found
+    // it: each one's first finder, the least k, is kept as it is found (on every thread, the
+    // compilers' atomic built-ins; a plain compare on one), then the others let it go.
+    std::vector<std::uint32_t>& first_finder = kept.first_finder;
+    first_finder.assign(previous.size(), std::numeric_limits<std::uint32_t>::max());
+    const bool threads = world.pool && world.pool->threads() > 1;
     for_chunks(world.pool, contacts.size(), kPointGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
         auto near = last.begin();
         for (std::size_t k = begin; k < end; ++k) {
             const Key key = key_of(contacts[k]);
             near = lower_bound_from(last.begin(), last.end(), near, key,
                                     [](const std::pair<Key, std::uint32_t>& x, const Key& want) { return x.first < want; });
-            if (near != last.end() && near->first == key) match[k] = near->second;
+            if (near == last.end() || near->first != key) continue;
+            match[k] = near->second;
+            std::uint32_t& finder = first_finder[near->second];
+            const std::uint32_t mine = std::uint32_t(k);
+            if (!threads) {
+                finder = std::min(finder, mine);
+                continue;
+            }
+            std::uint32_t now = __atomic_load_n(&finder, __ATOMIC_RELAXED);
+            while (mine < now && !__atomic_compare_exchange_n(&finder, &now, mine, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+            }
         }
     });
-    for (std::size_t k = 0; k < contacts.size(); ++k) {
-        if (match[k] < 0) continue;
-        if (taken[std::size_t(match[k])]) {
-            match[k] = -1;
-        } else {
-            taken[std::size_t(match[k])] = 1;
+    for_chunks(world.pool, contacts.size(), kPointGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            if (match[k] < 0) continue;
+            if (first_finder[std::size_t(match[k])] == std::uint32_t(k)) {
+                taken[std::size_t(match[k])] = 1;
+            } else {
+                match[k] = -1;
+            }
         }
-    }
+    });
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         const RigidContact& c = contacts[k];
         if (match[k] >= 0 || c.soft >= 0) continue;
@@ -484,11 +503,38 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     const auto node = [&](const Body& s) -> std::uint32_t {
         return s.kind == Body::Kind::Rigid ? s.index : std::uint32_t(world.bodies.size() + std::size_t(s.soft));
     };
-    for (const Manifold& m : manifolds_) {
-        if (m.a == 0 || m.b == 0) continue;
-        const std::uint32_t x = find(node(bodies_[m.a])), y = find(node(bodies_[m.b]));
-        if (x != y) parent[std::max(x, y)] = std::min(x, y);
-    }
+    // Joined on every thread: a root is only ever hung under a lesser one (compared and swapped
+    // while it is still a root), so each node's parent is always an ancestor, never more than
+    // itself, and the islands come out the same, whatever joins first. (On one thread, plainly.)
+    const bool join_on_threads = world.pool && world.pool->threads() > 1;
+    const auto load = [&](std::uint32_t x) { return __atomic_load_n(&parent[x], __ATOMIC_RELAXED); };
+    const auto find_shared = [&](std::uint32_t x) {
+        for (std::uint32_t up = load(x); up != x; up = load(x)) {
+            const std::uint32_t above = load(up);
+            if (above != up) __atomic_store_n(&parent[x], above, __ATOMIC_RELAXED);
+            x = above;
+        }
+        return x;
+    };
+    parallel(manifolds_.size(), kPointGrain, [&](std::size_t i) {
+        const Manifold& m = manifolds_[i];
+        if (m.a == 0 || m.b == 0) return;
+        std::uint32_t x = node(bodies_[m.a]), y = node(bodies_[m.b]);
+        if (!join_on_threads) {
+            x = find(x);
+            y = find(y);
+            if (x != y) parent[std::max(x, y)] = std::min(x, y);
+            return;
+        }
+        for (;;) {
+            x = find_shared(x);
+            y = find_shared(y);
+            if (x == y) return;
+            if (x > y) std::swap(x, y);
+            std::uint32_t root = y;
+            if (__atomic_compare_exchange_n(&parent[y], &root, x, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return;
+        }
+    });
     std::vector<std::int64_t>& number = kept.number;
     number.clear();
     reserve_with_room(number, nodes);
@@ -500,7 +546,10 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (number[root] < 0) number[root] = islands++;
         island_of_[b] = std::uint32_t(number[root]);
     }
-    for (Manifold& m : manifolds_) m.island = island_of_[m.a != 0 ? m.a : m.b];
+    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        Manifold& m = manifolds_[i];
+        m.island = island_of_[m.a != 0 ? m.a : m.b];
+    });
     absorbed_.assign(islands, 0.0);
 }
 

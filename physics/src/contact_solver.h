@@ -280,6 +280,7 @@ private:
         std::vector<std::uint32_t> run_at;
         std::vector<std::pair<ContactKey, std::uint32_t>> last;
         std::vector<char> taken;
+        std::vector<std::uint32_t> first_finder;
         std::vector<std::int64_t> match;
         std::vector<std::vector<std::int32_t>> particle_index;
         std::vector<FoundManifold> found;
