@@ -58,6 +58,26 @@ ConvexHull cylinder_hull(double radius, double height) {
     return convex_hull(rim);
 }
 
+// A box's or a cylinder's hull, shared by the bodies of one shape and size: the last few made
+// on this thread are kept, so a pyramid of 2,870 equal cubes builds one hull, not 2,870 (each
+// a convex hull of its corners). The same hull, so the same bits. `dims`: the shape's numbers.
+std::shared_ptr<const ConvexHull> shared_hull(ShapeKind shape, const Vec3d& dims) {
+    struct Made {
+        ShapeKind shape;
+        Vec3d dims;
+        std::shared_ptr<const ConvexHull> hull;
+    };
+    constexpr std::size_t kKept = 8;
+    thread_local std::vector<Made> made;
+    for (const Made& m : made) {
+        if (m.shape == shape && m.dims.x == dims.x && m.dims.y == dims.y && m.dims.z == dims.z) return m.hull;
+    }
+    auto hull = std::make_shared<const ConvexHull>(shape == ShapeKind::Box ? box_hull(dims) : cylinder_hull(dims.x, dims.y));
+    if (made.size() == kKept) made.erase(made.begin());
+    made.push_back({shape, dims, hull});
+    return hull;
+}
+
 Geometry mesh_geometry(const RigidBodyDef& def) {
     if (def.mesh.empty()) refuse(def, "mesh", "a mesh body needs a mesh file");
     Mesh mesh;
@@ -124,7 +144,7 @@ Geometry shape_geometry(const RigidBodyDef& def) {
         case ShapeKind::Box:
             needs(def.size.has_value(), "size");
             g.unit = box_mass_properties(*def.size);
-            g.hull = std::make_shared<const ConvexHull>(box_hull(*def.size));
+            g.hull = shared_hull(ShapeKind::Box, *def.size);
             g.render_mesh = box_mesh(*def.size);
             g.bounding_radius = 0.5 * length(*def.size);
             break;
@@ -138,7 +158,7 @@ Geometry shape_geometry(const RigidBodyDef& def) {
             needs(def.radius.has_value(), "radius");
             needs(def.height.has_value(), "height");
             g.unit = cylinder_mass_properties(*def.radius, *def.height);
-            g.hull = std::make_shared<const ConvexHull>(cylinder_hull(*def.radius, *def.height));
+            g.hull = shared_hull(ShapeKind::Cylinder, {*def.radius, *def.height, 0.0});
             g.render_mesh = cylinder_mesh(*def.radius, *def.height);
             g.bounding_radius = portable::hypot(*def.radius, 0.5 * *def.height);
             break;
