@@ -2,6 +2,7 @@
 #include "physics/broad_phase.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "collide_internal.h"
@@ -29,10 +30,13 @@ Aabb world_aabb(const CollisionShape& shape, const Pose& pose, double margin) {
 
 namespace {
 
+// The most strips overlapping_pairs cuts the boxes into.
+constexpr int kMostStrips = 64;
+
 bool finite(const Aabb& b) { return is_finite(b.lo) && is_finite(b.hi); }
 
-// The axis along which the boxes' centres spread most (largest variance).
-int sweep_axis(std::span<const Aabb> boxes) {
+// The axes by how much the boxes' centres spread along them (variance), most first.
+std::array<int, 3> axes_by_spread(std::span<const Aabb> boxes) {
     Vec3d sum, sum2;
     double n = 0.0;
     for (const Aabb& b : boxes) {
@@ -42,17 +46,13 @@ int sweep_axis(std::span<const Aabb> boxes) {
         for (int k = 0; k < 3; ++k) sum2[k] += c[k] * c[k];
         n += 1.0;
     }
-    if (n == 0.0) return 0;
-    int axis = 0;
-    double widest = -1.0;
-    for (int k = 0; k < 3; ++k) {
-        const double variance = sum2[k] / n - (sum[k] / n) * (sum[k] / n);
-        if (variance > widest) {
-            widest = variance;
-            axis = k;
-        }
-    }
-    return axis;
+    std::array<int, 3> axes{0, 1, 2};
+    if (n == 0.0) return axes;
+    double variance[3];
+    for (int k = 0; k < 3; ++k) variance[k] = sum2[k] / n - (sum[k] / n) * (sum[k] / n);
+    // Most first; of two alike, the lower axis first.
+    std::stable_sort(axes.begin(), axes.end(), [&](int x, int y) { return variance[x] > variance[y]; });
+    return axes;
 }
 
 // The pairs (a < b, each once, a and b below `bodies`) in increasing order of (a, b), as a sort
@@ -77,39 +77,82 @@ void sort_pairs(std::vector<BodyPair>& pairs, std::size_t bodies) {
 void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet,
                        ThreadPool* pool) {
     out.clear();
-    const int axis = sweep_axis(boxes);
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const std::array<int, 3> axes = axes_by_spread(boxes);
+    const int axis = axes[0], u = axes[1], v = axes[2];
     // Each finite box's interval on the sweep axis and its extent on the other two, side by
     // side in memory, in order of its start on the axis (only finite boxes: a comparison with a
     // NaN is no order).
     struct Entry {
         double lo, hi, lo_u, hi_u, lo_v, hi_v;
         std::uint32_t index;
+        std::int32_t first_strip;  // the first strip it reaches (below)
     };
     // (The starts sorted with their boxes' indices, then the entries laid out in that order:
     // sorting the entries themselves moved seven times the memory.)
     std::vector<std::pair<double, std::uint32_t>> starts;
     starts.reserve(boxes.size());
+    double u_lo = 0.0, u_hi = 0.0, widths = 0.0;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (finite(boxes[i])) starts.push_back({boxes[i].lo[axis], std::uint32_t(i)});
+        const Aabb& b = boxes[i];
+        if (!finite(b)) continue;
+        u_lo = starts.empty() ? b.lo[u] : std::min(u_lo, b.lo[u]);
+        u_hi = starts.empty() ? b.hi[u] : std::max(u_hi, b.hi[u]);
+        widths += b.hi[u] - b.lo[u];
+        starts.push_back({b.lo[axis], std::uint32_t(i)});
     }
+    if (starts.empty()) return;
     std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<Entry> sweep(starts.size());
+    // The strips: the boxes cut along the second axis into strips about twice a box as wide
+    // (at most kMostStrips), each box in every strip it reaches, and each strip swept on its
+    // own. A pile spread over a floor has most of its boxes overlapping a given one on the sweep
+    // axis far from it on the other: in bin:3000, the strips leave a sixth of the comparisons.
+    // A pair of boxes is noted in one strip only: the one where the later of their starts on
+    // the second axis falls (both boxes reach it).
+    const double extent = u_hi - u_lo, mean_width = widths / double(starts.size());
+    const double wanted = extent / (2.0 * mean_width);
+    const int strips = wanted >= 2.0 && wanted < double(kMostStrips) ? int(wanted) : wanted >= double(kMostStrips) ? kMostStrips : 1;
+    const double strip_width = extent / double(strips);
+    const auto strip_of = [&](double x) {  // never decreasing in x
+        if (strips == 1) return 0;
+        const double k = std::floor((x - u_lo) / strip_width);
+        return !(k > 0.0) ? 0 : k >= double(strips - 1) ? strips - 1 : int(k);
+    };
+    // Each box's first and last strip; each strip's entries together (a strip's in order of
+    // their start, as the boxes were sorted), and where each strip ends.
+    std::vector<std::pair<std::int32_t, std::int32_t>> reach(starts.size());
+    std::vector<std::uint32_t> strip_end(std::size_t(strips) + 1, 0);
     for (std::size_t k = 0; k < starts.size(); ++k) {
         const Aabb& b = boxes[starts[k].second];
-        sweep[k] = {b.lo[axis], b.hi[axis], b.lo[u], b.hi[u], b.lo[v], b.hi[v], starts[k].second};
+        reach[k] = {strip_of(b.lo[u]), strip_of(b.hi[u])};
+        for (int c = reach[k].first; c <= reach[k].second; ++c) ++strip_end[std::size_t(c) + 1];
     }
-    // Each box meets the ones that start after it and before it ends. Boxes that start together
-    // may come in either order (either way finds their pair), and the pairs are sorted at the
-    // end, so nothing depends on how the sort breaks ties.
+    for (int c = 0; c < strips; ++c) strip_end[std::size_t(c) + 1] += strip_end[std::size_t(c)];
+    std::vector<std::uint32_t> at(strip_end.begin(), strip_end.end() - 1);
+    std::vector<Entry> sweep(strip_end.back());
+    std::vector<std::int32_t> strip_at(sweep.size());  // the strip each entry is in
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+        const Aabb& b = boxes[starts[k].second];
+        for (int c = reach[k].first; c <= reach[k].second; ++c) {
+            strip_at[at[std::size_t(c)]] = c;
+            sweep[at[std::size_t(c)]++] = {b.lo[axis], b.hi[axis], b.lo[u], b.hi[u], b.lo[v], b.hi[v], starts[k].second, reach[k].first};
+        }
+    }
+    // Each box meets the ones of its strip that start after it and before it ends. Boxes that
+    // start together may come in either order (either way finds their pair), and the pairs are
+    // sorted at the end, so nothing depends on how the sort breaks ties.
     const auto sweep_from = [&](std::size_t begin, std::size_t end, std::vector<BodyPair>& found) {
         for (std::size_t i = begin; i < end; ++i) {
             const Entry& a = sweep[i];
             const bool a_quiet = !quiet.empty() && quiet[a.index];
-            for (std::size_t j = i + 1; j < sweep.size() && sweep[j].lo <= a.hi; ++j) {
+            const std::int32_t strip = strip_at[i];
+            const std::size_t last = strip_end[std::size_t(strip) + 1];
+            for (std::size_t j = i + 1; j < last && sweep[j].lo <= a.hi; ++j) {
                 const Entry& b = sweep[j];
                 if (a_quiet && quiet[b.index]) continue;
-                if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v) {
+                // Noted where the later start falls: the strip of the two's later first strip
+                // (strip_of never decreases), which both reach when they overlap.
+                if (a.lo_u <= b.hi_u && b.lo_u <= a.hi_u && a.lo_v <= b.hi_v && b.lo_v <= a.hi_v &&
+                    std::max(a.first_strip, b.first_strip) == strip) {
                     found.push_back({std::min(a.index, b.index), std::max(a.index, b.index)});
                 }
             }

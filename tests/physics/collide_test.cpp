@@ -853,6 +853,45 @@ TEST(BroadPhase, SameAsBruteForce) {
     EXPECT_EQ(pairs.size(), 197u);
 }
 
+// A pile spread over a floor, as in a wide bin: 2,000 boxes of 0.1 to 0.5 m over 20 m by 16 m,
+// up to 1.5 m high, four walls along its edges, a box every few on the walls' lines (each meets
+// a wall) and a box that is a whole strip of floor. The sweep cuts such a pile into strips
+// across it (broad_phase.h); the pairs are the same as every pair's test, each once, and those
+// of two quiet boxes (asleep or fixed: every third, and the walls) are left out, on one thread
+// and on a pool's.
+TEST(BroadPhase, PileOverAFloorSameAsBruteForce) {
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3d c{20.0 * unit(rng) - 10.0, 16.0 * unit(rng) - 8.0, 1.5 * unit(rng)};
+        const Vec3d half{0.05 + 0.2 * unit(rng), 0.05 + 0.2 * unit(rng), 0.05 + 0.2 * unit(rng)};
+        boxes.push_back({c - half, c + half});
+    }
+    boxes.push_back({{-10.2, -8.2, 0.0}, {10.2, -8.0, 1.0}});
+    boxes.push_back({{-10.2, 8.0, 0.0}, {10.2, 8.2, 1.0}});
+    boxes.push_back({{-10.2, -8.0, 0.0}, {-10.0, 8.0, 1.0}});
+    boxes.push_back({{10.0, -8.0, 0.0}, {10.2, 8.0, 1.0}});
+    boxes.push_back({{-10.0, -0.3, -0.1}, {10.0, 0.3, 0.0}});  // a strip of floor across the pile
+    std::vector<std::uint8_t> quiet(boxes.size(), 0);
+    for (std::size_t i = 0; i < boxes.size(); i += 3) quiet[i] = 1;
+    for (std::size_t i = 2000; i < 2004; ++i) quiet[i] = 1;
+    std::vector<BodyPair> expected;
+    for (const BodyPair& p : brute_pairs(boxes)) {
+        if (!(quiet[p.a] && quiet[p.b])) expected.push_back(p);
+    }
+    EXPECT_GT(expected.size(), 500u);
+    std::vector<BodyPair> pairs;
+    overlapping_pairs(boxes, pairs, quiet);
+    EXPECT_EQ(pairs, expected);
+    ThreadPool pool(2);
+    overlapping_pairs(boxes, pairs, quiet, &pool);
+    EXPECT_EQ(pairs, expected);
+    // Every pair of two overlapping boxes when none is quiet.
+    overlapping_pairs(boxes, pairs);
+    EXPECT_EQ(pairs, brute_pairs(boxes));
+}
+
 // The pairs of a few boxes (bodies just woken) with all the others: the sweep's pairs that have
 // one of them, in the same order, each pair of two of them once; a box that is not a number
 // among them meets nothing.

@@ -1,7 +1,7 @@
 // The broad phase: which pairs of bodies are near enough to be worth the narrow phase
 // (collide.h). Each body is boxed by its world axis-aligned bounding box, fattened by a margin;
-// the boxes are sorted along one axis and swept (sort and sweep), so only boxes that overlap on
-// that axis are compared on the other two.
+// the boxes are cut into strips across a second axis, and each strip's are sorted along the
+// first and swept (sort and sweep), so only boxes near each other on two axes are compared.
 #pragma once
 
 #include <cstdint>
@@ -36,11 +36,14 @@ struct BodyPair {
 // Every pair of overlapping boxes, written into `out` (cleared first), in increasing order of
 // (a, b): the same pairs in the same order on every run and machine, whatever the sort did.
 // The sweep runs along the axis on which the boxes' centres spread most (a pile is tall, a row
-// is long), so a stack of hundreds sharing one x range is still swept cheaply. A huge box (a
-// fixed ramp, the floor) costs one pass over the boxes that start within it. A box with a
-// coordinate that is not a number overlaps nothing.
-// Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes overlapping one on the
-// sweep axis.
+// is long), so a stack of hundreds sharing one x range is still swept cheaply; the strips are
+// across the axis they spread most on after it, each about two boxes wide (on average), so a
+// pile spread over a floor is not swept as one long row: a box meets the few of its strips
+// that it overlaps on the sweep axis, not every box of the floor's width that does. A huge box
+// (a fixed ramp, the floor) is in every strip it reaches, and costs one pass over the boxes
+// that start within it in each. A box with a coordinate that is not a number overlaps nothing.
+// Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes of its strips
+// overlapping one on the sweep axis.
 // `quiet` (empty: none): boxes so marked (bodies asleep or fixed) are not paired with one another.
 // With a `pool`, the sweep runs on its threads in chunks of boxes (the pairs sorted all the same).
 void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {},
