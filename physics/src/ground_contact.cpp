@@ -139,7 +139,12 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
 void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const WorldSettings& world, double h,
                            std::vector<RigidContact>& out) {
     if (!world.ground || body.fixed) return;
-    const RigidMotion m0 = rigid_motion(body, start);
+    rigid_ground_contacts(body, index, rigid_motion(body, start), world, h, out);
+}
+
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const RigidMotion& m0, const WorldSettings& world, double h,
+                           std::vector<RigidContact>& out) {
+    if (!world.ground || body.fixed) return;
     const Vec3d n{0.0, 0.0, 1.0};
     const double ground = world.ground_height;
     const double margin = speculative_margin(body, m0, h, length(Vec3d(world.gravity)));

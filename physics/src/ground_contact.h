@@ -52,5 +52,9 @@ double speculative_margin(const RigidBody& body, const RigidMotion& start, doubl
 // restitution and friction or the world's. `start`: the body's state as the tick began; `h`: the tick.
 void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const double* start, const WorldSettings& world, double h,
                            std::vector<RigidContact>& out);
+// The same from the body's motion where the tick began (rigid_motion of `start`), worked out
+// already.
+void rigid_ground_contacts(const RigidBody& body, std::uint32_t index, const RigidMotion& start, const WorldSettings& world, double h,
+                           std::vector<RigidContact>& out);
 
 }  // namespace softbody

@@ -94,13 +94,21 @@ bool mark_quiet(std::span<const RigidBody> bodies, std::span<const std::uint8_t>
     return all_quiet;
 }
 
-// Body b's speculative margin and its box grown by it, where the tick began.
+// Body b's speculative margin and its box grown by it, where the tick began (its motion then:
+// from `motions` when given, worked out for every awake body, else from `start`).
 void box_of(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes, std::span<const double> start, double h,
-            double g, std::span<const std::uint8_t> asleep, std::size_t b, RigidContactScratch& scratch) {
+            double g, std::span<const std::uint8_t> asleep, std::span<const RigidMotion> motions, std::size_t b,
+            RigidContactScratch& scratch) {
     const double* s = &start[b * rigid::kStateSize];
     // Asleep, P and L are exactly 0: the margin of a body at rest, without its motion.
     const bool still = !asleep.empty() && asleep[b];
-    scratch.margins[b] = bodies[b].fixed ? 0.0 : speculative_margin(bodies[b], still ? RigidMotion{} : rigid_motion(bodies[b], s), h, g);
+    if (bodies[b].fixed) {
+        scratch.margins[b] = 0.0;
+    } else if (still) {
+        scratch.margins[b] = speculative_margin(bodies[b], RigidMotion{}, h, g);
+    } else {
+        scratch.margins[b] = speculative_margin(bodies[b], motions.empty() ? rigid_motion(bodies[b], s) : motions[b], h, g);
+    }
     scratch.boxes[b] = world_aabb(shapes[b], pose_of(s), scratch.margins[b]);
 }
 
@@ -189,7 +197,7 @@ std::size_t test_pairs(std::span<const RigidBody> bodies, std::span<const Collis
 std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                                 std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
                                 std::vector<RigidContact>& out, std::size_t at, std::span<const std::uint8_t> asleep,
-                                ThreadPool* pool) {
+                                ThreadPool* pool, std::span<const RigidMotion> motions) {
     const std::size_t n = bodies.size();
     if (n < 2) return at;
     const double g = length(Vec3d(world.gravity));
@@ -206,7 +214,7 @@ std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<con
     scratch.boxes.resize(n);
     scratch.margins.resize(n);
     for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, b, scratch);
+        for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, motions, b, scratch);
     });
     overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
     return test_pairs(bodies, shapes, start, world, scratch, out, at, {}, true, pool);
@@ -232,7 +240,7 @@ void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<cons
         scratch.boxes.resize(n);
         scratch.margins.resize(n);
         for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
-            for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, b, scratch);
+            for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, {}, b, scratch);
         });
     }
     // The same pairs either way; a few woken bodies are tested against every box, more are swept.

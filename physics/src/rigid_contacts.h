@@ -48,7 +48,7 @@ struct RigidContactScratch {
 std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
                                 std::span<const double> start, const WorldSettings& world, double h, RigidContactScratch& scratch,
                                 std::vector<RigidContact>& out, std::size_t at, std::span<const std::uint8_t> asleep = {},
-                                ThreadPool* pool = nullptr);
+                                ThreadPool* pool = nullptr, std::span<const RigidMotion> motions = {});
 
 // After rigid_body_contacts in the same find, when bodies that were asleep (`was_asleep`) have
 // woken (`asleep` now): appends the contacts of the pairs that find did not test, those of two

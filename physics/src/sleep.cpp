@@ -51,6 +51,7 @@ void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidCo
         sleep_.rest_time[b] = 0.0;
         asleep_[b] = 0;
         --sleep_.sleeping;
+        if (b < part_motion_.size()) part_motion_[b] = rigid_motion(b);  // awake in the part under way
     }
     // Those of bodies now awake go; the rest stay, in their order.
     const auto awake = std::stable_partition(sleep_.contacts.begin(), sleep_.contacts.end(),
