@@ -57,12 +57,12 @@ std::string soft_body_fault(const SoftBody& body, const std::string& who) {
 
 // What is wrong with a rigid body's state, or "": a number that is not finite, an absurd speed
 // or spin, or a body flung absurdly far.
-std::string rigid_body_fault(const RigidBody& body, const double* state) {
+// `m`: its motion, rigid_motion(body, state).
+std::string rigid_body_fault(const RigidBody& body, const double* state, const RigidMotion& m) {
     const auto who = [&] { return "rigid body '" + body.name + "'"; };
     for (int k = 0; k < rigid::kStateSize; ++k) {
         if (!std::isfinite(state[k])) return who() + "'s state is no longer a finite number";
     }
-    const RigidMotion m = rigid_motion(body, state);
     if (!is_finite(m.omega) || !is_finite(m.v)) return who() + "'s state is no longer a finite number";
     if (length(m.v) > kMaxSpeed) return who() + " moves at " + fixed(length(m.v), 0) + " m/s";
     if (length(m.omega) > kMaxAngularSpeed) return who() + " spins at " + fixed(length(m.omega), 0) + " rad/s";
@@ -85,11 +85,11 @@ void World::check_divergence() {
         std::vector<std::size_t> first_fault(std::size_t(4 * pool_->threads()), none);
         for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
             for (std::size_t b = begin; b < end && first_fault[chunk] == none; ++b) {
-                if (!rigid_[b].fixed && !asleep_[b] && !rigid_body_fault(rigid_[b], rigid_state(b)).empty()) first_fault[chunk] = b;
+                if (!rigid_[b].fixed && !asleep_[b] && !rigid_body_fault(rigid_[b], rigid_state(b), motion_[b]).empty()) first_fault[chunk] = b;
             }
         });
         const std::size_t b = *std::min_element(first_fault.begin(), first_fault.end());
-        if (b != none) what = rigid_body_fault(rigid_[b], rigid_state(b));
+        if (b != none) what = rigid_body_fault(rigid_[b], rigid_state(b), motion_[b]);
     }
     // Past its stability limit a body need not fly apart: the fastest mode (the uniform
     // expansion) can grow until the springs turn the body inside out and cap it, leaving it

@@ -51,7 +51,7 @@ void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidCo
         sleep_.rest_time[b] = 0.0;
         asleep_[b] = 0;
         --sleep_.sleeping;
-        if (b < part_motion_.size()) part_motion_[b] = rigid_motion(b);  // awake in the part under way
+        if (b < motion_.size()) motion_[b] = rigid_motion(b);  // awake from now on (motion_)
     }
     // Those of bodies now awake go; the rest stay, in their order.
     const auto awake = std::stable_partition(sleep_.contacts.begin(), sleep_.contacts.end(),
@@ -172,7 +172,7 @@ void World::update_sleep() {
     for_chunks(pool_.get(), n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
             if (rigid_[b].fixed || asleep_[b]) continue;
-            const RigidMotion m = rigid_motion(b);
+            const RigidMotion& m = motion_[b];
             const double r = rigid_[b].bounding_radius;
             const double speed = length(m.v) + length(m.omega) * r;
             double* pose = &sleep_.rest_pose[b * kRestPoseSize];

@@ -288,6 +288,15 @@ void World::step(float h) {
     for (SoftBody& body : soft_) resolve_ground_contacts(body, settings_, h);
 }
 
+void World::note_motions() {
+    motion_.resize(rigid_.size());
+    for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            if (!rigid_[b].fixed && !asleep_[b]) motion_[b] = rigid_motion(b);
+        }
+    });
+}
+
 // The substeps `time` (a tick, or what is left of it) needs for its rigid bodies' turns. Symplectic Euler and Verlet turn each
 // body exactly about its principal axes and keep its energy (free_turn), stable at any rate: for
 // accuracy, no body turns more than kMaxTurn in a substep. RK4 and explicit Euler step
@@ -297,15 +306,6 @@ void World::step(float h) {
 // at |L| delta / I_min. Their steps must follow that rate, |L| / I_min, to within
 // kMaxStiffTurn (RK4 is stable for h w < 2.8): a 5 m rod 5 cm thick tumbling at 20 rad/s needs
 // about 300 substeps a tick, a box none. At most kMaxRotationSubsteps.
-void World::note_part_motions() {
-    part_motion_.resize(rigid_.size());
-    for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t b = begin; b < end; ++b) {
-            if (!rigid_[b].fixed && !asleep_[b]) part_motion_[b] = rigid_motion(b);
-        }
-    });
-}
-
 int World::rotation_substeps(double time) const {
     const bool stiff = settings_.integrator == Integrator::RK4 || settings_.integrator == Integrator::ExplicitEuler;
     const double turn = stiff ? kMaxTurnRK4 : kMaxTurn;
@@ -316,7 +316,7 @@ int World::rotation_substeps(double time) const {
         for (std::size_t b = begin; b < end; ++b) {
             const RigidBody& body = rigid_[b];
             if (body.fixed || asleep_[b]) continue;
-            const RigidMotion& m = part_motion_[b];
+            const RigidMotion& m = motion_[b];
             needed = std::max(needed, time * length(m.omega) / turn);
             if (stiff && body.principal_moments.x > 0.0) {
                 needed = std::max(needed, time * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
@@ -378,12 +378,12 @@ void World::generate_contacts(double reach) {
         ground[chunk].clear();
         for (std::size_t b = begin; b < end; ++b) {
             if (asleep_[b]) continue;
-            rigid_ground_contacts(rigid_[b], std::uint32_t(b), part_motion_[b], settings_, reach, ground[chunk]);
+            rigid_ground_contacts(rigid_[b], std::uint32_t(b), motion_[b], settings_, reach, ground[chunk]);
         }
     });
     const std::size_t ground_end = place_chunks(contacts_, 0, ground, chunks, pool_.get());
     contacts_.resize(rigid_body_contacts(rigid_, shapes_, y_, settings_, reach, *rigid_contact_scratch_, contacts_, ground_end, asleep_,
-                                         pool_.get(), part_motion_));
+                                         pool_.get(), motion_));
     for (std::size_t b = 0; b < soft_.size(); ++b) {
         particle_rigid_contacts(soft_[b], std::int32_t(b), rigid_, shapes_, y_, settings_, reach, contacts_);
     }
@@ -466,7 +466,7 @@ int World::contact_intervals(double time) {
     for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) {
             if (touching[b] && !rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) {
-                fastest_in[chunk] = std::max(fastest_in[chunk], length(part_motion_[b].omega));
+                fastest_in[chunk] = std::max(fastest_in[chunk], length(motion_[b].omega));
             }
         }
     });
@@ -513,7 +513,7 @@ void World::tick() {
     for (bool first = true; left > 1e-9 * dt; first = false) {
         const double part = left / dt;
         int steps = std::max(1, int(std::ceil(double(substeps_) * part - 1e-9)));
-        if (!rigid_.empty()) note_part_motions();
+        if (!rigid_.empty()) note_motions();
         if (settings_.auto_substeps) steps = std::max(steps, rotation_substeps(left));
         if (soft_touching_) steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * part - 1e-9)));
         if (soft_touching_ && rigid_.empty()) steps = std::max(steps, soft_contact_substeps(part));
@@ -563,6 +563,7 @@ void World::tick() {
             q[3] = unit.z;
         }
     }
+    if (!rigid_.empty()) note_motions();
     check_divergence();
     if (status_ == Status::Ok) update_sleep();
     if (status_ != Status::Ok) {

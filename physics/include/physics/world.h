@@ -304,7 +304,7 @@ private:
     ThingNames thing_names() const;
     void update_substeps();
     void step(float h);
-    void note_part_motions();
+    void note_motions();
     int rotation_substeps(double time) const;
     void find_contacts(double reach);
     void generate_contacts(double reach);
@@ -347,11 +347,12 @@ private:
     std::vector<std::vector<std::pair<std::uint32_t, Vec3>>> link_force_on_particles_;  // per soft body
     std::vector<RigidContact> contacts_, previous_contacts_;
     std::vector<std::uint8_t> contact_touching_;   // which rigid bodies have a contact (contact_intervals)
-    // Each awake rigid body's rigid_motion as the tick's part begins (note_part_motions): what
-    // its substeps, its box, its ground contacts and the contact intervals are planned from, worked
-    // out once for the four. A sleeping or fixed body's entry is not kept up to date (none of them
-    // reads it); a body that wakes has its own worked out as it wakes.
-    std::vector<RigidMotion> part_motion_;
+    // Each awake rigid body's rigid_motion where it is (note_motions): as each part of the tick
+    // begins, for its substep count, its boxes, its ground contacts and the contact intervals, and
+    // as the tick ends, for the divergence check and the sleep, worked out once for each. A
+    // sleeping or fixed body's entry is not kept up to date (none of them reads it); a body that
+    // wakes has its own worked out as it wakes.
+    std::vector<RigidMotion> motion_;
     std::unique_ptr<RigidContactScratch> rigid_contact_scratch_;  // the broad phase's buffers
     std::unique_ptr<ContactSolver> solver_;
     std::unique_ptr<SoftContacts> soft_contacts_;  // soft against soft (soft_contacts.h)
