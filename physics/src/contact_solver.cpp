@@ -91,7 +91,7 @@ constexpr int kCouplingPasses = 8;
 constexpr double kSpeculative = 1e-6;
 
 // Two points of a pair of bodies, a tick apart, this close are the same contact (m).
-constexpr double kSamePoint = 5e-3;
+constexpr double kSameContact = 5e-3;
 
 // The least work worth handing to another thread: bodies (a free turn each, in the positions),
 // manifolds (one pass of a block solve each; the slabs go to the threads from kManifoldGrain
@@ -279,7 +279,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // Each contact's point of the last tick, to start from its impulses (warm starting): the
     // one with the same features; failing that (a face exactly over another's edge is clipped
     // into points whose features flip with rounding), the nearest of the same two bodies
-    // within kSamePoint that no other took. Sorted by key, in log time.
+    // within kSameContact that no other took. Sorted by key, in log time.
     // The keys are sorted with the contact's place (sorted_keys), so that equal keys too come in
     // one order on every run.
     sorted_keys(previous, kept.runs, kept.run_parts, kept.run_at, kept.last, world.pool);
@@ -335,7 +335,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         const RigidContact& c = contacts[k];
         if (match[k] >= 0 || c.soft >= 0) continue;
-        double best = kSamePoint * kSamePoint;
+        double best = kSameContact * kSameContact;
         for (auto it = lower({c.soft, c.a, c.b, 0u}); it != last.end(); ++it) {
             const RigidContact& p = previous[it->second];
             if (p.soft != c.soft || p.a != c.a || p.b != c.b) break;

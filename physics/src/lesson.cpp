@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 
 #include "physics/error.h"
 #include "physics/shape_meshes.h"
@@ -14,7 +15,6 @@ namespace softbody {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 constexpr LessonInfo kLessons[] = {
@@ -80,7 +80,7 @@ double elliptic_k(double m) {
         b = std::sqrt(a * b);
         a = mean;
     }
-    return kPi / (2.0 * a);
+    return std::numbers::pi / (2.0 * a);
 }
 
 Vec3d soft_com(const SoftBody& body, bool velocity) {
@@ -428,7 +428,7 @@ void LessonMeter::compare_spring(const World& world, double, std::vector<Compari
     const char* undamped = !lower_.empty() ? "T = 2 pi sqrt(m (1/k1 + 1/k2))" : upper_.size() > 1 ? "T = 2 pi sqrt(m / (k1 + k2))" : "T = 2 pi sqrt(m / k)";
     Comparison period = comparison("period", c > 0.0 ? "T = 2 pi / sqrt(k/m - (c/2m)^2)" : undamped,
                       c > 0.0 ? "Eq. 21, 22" : "Eq. 21", "s");
-    period.predicted = w2 > 0.0 ? 2.0 * kPi / std::sqrt(w2) : kNaN;
+    period.predicted = w2 > 0.0 ? 2.0 * std::numbers::pi / std::sqrt(w2) : kNaN;
     if (!(w2 > 0.0)) period.predicted_text = "no swing: critically or over-damped";
     period.tolerance = 0.01;
     if (extrema_.size() >= 3) {
@@ -492,7 +492,7 @@ void LessonMeter::compare_friction_slope(const World& world, double elapsed, std
     Comparison hold = comparison("tan theta against mu_s", "held while tan theta <= mu_s", "Eq. 24", "");
     hold.predicted = std::tan(f.theta);
     hold.predicted_text = format(slides ? "slides: tan %.0f deg = %.3f > mu_s" : "holds: tan %.0f deg = %.3f <= mu_s",
-                                 f.theta * 180.0 / kPi, std::tan(f.theta)) + format(" = %.2f", mu_s);
+                                 f.theta * 180.0 / std::numbers::pi, std::tan(f.theta)) + format(" = %.2f", mu_s);
     const bool moved = travelled_ > 0.01;  // a centimetre down the slope
     hold.measured_text = moved ? format("slides: %.2f m down", travelled_)
                                : format(elapsed >= 1.0 ? "holds: %.1f mm down" : "holds so far: %.1f mm down", travelled_ * 1e3);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -14,8 +15,6 @@
 namespace softbody {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string number(double x) {
     std::ostringstream out;
@@ -57,7 +56,7 @@ MassProperties sphere_mass_properties(double radius) {
     require_size("sphere radius", radius);
     const double r = radius;
     MassProperties out;
-    out.volume = 4.0 / 3.0 * kPi * r * r * r;
+    out.volume = 4.0 / 3.0 * std::numbers::pi * r * r * r;
     out.inertia = Mat3::identity() * (0.4 * out.volume * r * r);  // 2/5 m r^2 about every axis
     return out;
 }
@@ -67,7 +66,7 @@ MassProperties cylinder_mass_properties(double radius, double height) {
     require_size("cylinder height", height);
     const double r = radius, h = height;
     MassProperties out;
-    out.volume = kPi * r * r * h;
+    out.volume = std::numbers::pi * r * r * h;
     // About its axis 1/2 m r^2; across it m (3 r^2 + h^2) / 12.
     const double across = out.volume * (3.0 * r * r + h * h) / 12.0;
     out.inertia = Mat3::diagonal({across, across, 0.5 * out.volume * r * r});

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -18,8 +19,6 @@
 namespace softbody {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string number(double x) {
     std::ostringstream out;
@@ -208,7 +207,7 @@ Mesh cylinder_mesh(double radius, double height, int segments) {
     // Corner k of the bottom ring is vertex k, of the top ring segments + k.
     for (const double z : {-half, half}) {
         for (int k = 0; k < segments; ++k) {
-            const double angle = 2.0 * kPi * k / segments;
+            const double angle = 2.0 * std::numbers::pi * k / segments;
             b.vertex({radius * portable::cos(angle), radius * portable::sin(angle), z});
         }
     }

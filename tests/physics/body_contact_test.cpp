@@ -9,10 +9,6 @@
 namespace softbody::test {
 namespace {
 
-World world_of(const std::string& json, int threads = 1) {
-    return World(parse_scene(json, "test.json"), WorldOptions{threads});
-}
-
 // A scene's rigid bodies and keys, with a soft body "body" of the given points added, placed
 // where the points are (init_height 0), with the scene's top-level body keys (stiffness,
 // damping, particle_mass).

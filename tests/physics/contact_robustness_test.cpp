@@ -15,10 +15,6 @@
 namespace softbody::test {
 namespace {
 
-World world_of(const std::string& json) { return World((parse_scene(json, "test.json"))); }
-
-const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
-
 bool keeps_energy(const char* integrator) { return std::string(integrator) != "explicit_euler"; }
 
 std::string with_integrator(std::string json, const char* integrator) {

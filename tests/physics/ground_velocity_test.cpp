@@ -14,13 +14,6 @@
 namespace softbody::test {
 namespace {
 
-const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
-
-World world_of(Scene scene, const char* integrator) {
-    scene.settings.integrator = *integrator_from_string(integrator);
-    return World(scene, WorldOptions{1});
-}
-
 // A soft ball (ball:2, 162 particles, 0.7 m across, k 120, c 2) set down on the
 // ground: it settles within a second or two.
 Scene soft_ball() {

@@ -11,10 +11,6 @@ namespace softbody::test {
 namespace {
 
 // A world from scene text (the keys of app/README.md#scene-files).
-World world_of(const std::string& json, int threads = 1) {
-    return World((parse_scene(json, "test.json")), WorldOptions{threads});
-}
-
 // Body-axes angular velocity R^T w of rigid body i.
 Vec3d body_omega(const World& world, std::size_t i) {
     const RigidMotion m = world.rigid_motion(i);

@@ -12,15 +12,7 @@
 namespace softbody::test {
 namespace {
 
-const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
-
-World world_of(const std::string& json, const char* integrator) {
-    Scene scene = parse_scene(json, "test.json");
-    scene.settings.integrator = *integrator_from_string(integrator);
-    return World(scene, WorldOptions{1});
-}
-
-std::string number(double x) {
+std::string exact_number(double x) {
     char text[64];
     std::snprintf(text, sizeof text, "%.17g", x);
     return text;
@@ -28,9 +20,9 @@ std::string number(double x) {
 
 // A solid ball (1,000 kg/m^3) of radius r resting on the ground, rolling along x at v (w = v / r).
 std::string rolling_ball(double r, double v) {
-    return "{\"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": " + number(r) +
-           ", \"density\": 1000, \"position\": [0, 0, " + number(r) + "], \"velocity\": [" + number(v) +
-           ", 0, 0], \"angular_velocity\": [0, " + number(v / r) + ", 0]}]}";
+    return "{\"rigid_bodies\": [{\"name\": \"ball\", \"shape\": \"sphere\", \"radius\": " + exact_number(r) +
+           ", \"density\": 1000, \"position\": [0, 0, " + exact_number(r) + "], \"velocity\": [" + exact_number(v) +
+           ", 0, 0], \"angular_velocity\": [0, " + exact_number(v / r) + ", 0]}]}";
 }
 
 // How deep a ball stands at rest on the ground under an integrator, m (the push apart's slop:
@@ -97,7 +89,7 @@ TEST(RollingStaysOnTheSurface, CylinderOnItsSideUnderEveryIntegrator) {
         for (double v : {2.2, 5.0}) {
             World world = world_of("{\"rigid_bodies\": [{\"name\": \"c\", \"shape\": \"cylinder\", \"radius\": 0.1, \"height\": 0.2,"
                                    " \"density\": 1000, \"rotation\": [90, 0, 0], \"position\": [0, 0, 0.1],"
-                                   " \"velocity\": [" + number(v) + ", 0, 0], \"angular_velocity\": [0, " + number(v / 0.1) + ", 0]}]}",
+                                   " \"velocity\": [" + exact_number(v) + ", 0, 0], \"angular_velocity\": [0, " + exact_number(v / 0.1) + ", 0]}]}",
                                    integrator);
             double deepest = 0.0;
             for (int t = 0; t < 100; ++t) {

@@ -15,8 +15,6 @@ namespace {
 constexpr double kG = 9.81;
 constexpr double kRadius = 0.1;
 
-World world_of(const std::string& json) { return World((parse_scene(json, "test.json")), WorldOptions{1}); }
-
 // A solid ball of radius 0.1 m resting on the ground, moving at v (m/s, along x) and turning at
 // w (rad/s, world axes).
 std::string ball(double rolling_resistance, double v, const Vec3d& w) {

@@ -17,10 +17,6 @@ World world_of_file(const std::string& name, int threads = 1) {
     return World((load_scene(scene_path(name))), WorldOptions{threads});
 }
 
-World world_of(const std::string& json, int threads = 1) {
-    return World((parse_scene(json, "test.json")), WorldOptions{threads});
-}
-
 Vec3d centre(const World& world, std::size_t b) {
     const SoftBody& body = world.soft_body(b);
     Vec3d sum;

@@ -18,15 +18,7 @@
 namespace softbody::test {
 namespace {
 
-const char* const kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
-
 bool keeps_energy(const std::string& integrator) { return integrator != "explicit_euler"; }
-
-World world_of(const std::string& json, const std::string& integrator) {
-    Scene scene = parse_scene(json, "test.json");
-    scene.settings.integrator = *integrator_from_string(integrator);
-    return World(scene);
-}
 
 std::string number(double x) {
     char text[64];

@@ -17,6 +17,7 @@
 #include <initializer_list>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "physics/error.h"
@@ -29,6 +30,24 @@
 namespace softbody::test {
 
 inline constexpr double kPi = 3.14159265358979323846;
+
+// The four integrators a scene can name, for the tests that run under each.
+inline constexpr const char* kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
+
+// A world of a scene given as JSON text.
+inline World world_of(const std::string& json, int threads = 1) {
+    return World(parse_scene(json, "test.json"), WorldOptions{threads});
+}
+
+// A world of a scene with its integrator replaced by the named one.
+inline World world_of(Scene scene, std::string_view integrator, int threads = 1) {
+    scene.settings.integrator = *integrator_from_string(integrator);
+    return World(scene, WorldOptions{threads});
+}
+
+inline World world_of(const std::string& json, std::string_view integrator) {
+    return world_of(parse_scene(json, "test.json"), integrator);
+}
 
 // A mesh of points only (no faces): a valid point cloud, one particle per distinct point.
 inline Mesh points(const std::vector<Vec3>& positions, const std::string& name = "test points") {

@@ -63,7 +63,7 @@ private:
     std::size_t mesh_ = 0;
 };
 
-const ToolRegistration kRegistered{80, [] { return std::unique_ptr<Tool>(new AddTool); }};
+const ToolRegistration kAddToolRegistered{80, [] { return std::unique_ptr<Tool>(new AddTool); }};
 
 }  // namespace
 

@@ -108,7 +108,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{90, [] { return std::unique_ptr<Tool>(new AllKeysTool); }};
+const ToolRegistration kAllKeysToolRegistered{90, [] { return std::unique_ptr<Tool>(new AllKeysTool); }};
 
 }  // namespace
 

@@ -96,7 +96,7 @@ private:
     int compare_substeps_[4] = {0, 0, 0, 0};             // each one's substeps; 0: automatic
 };
 
-const ToolRegistration kRegistered{60, [] { return std::unique_ptr<Tool>(new CompareTool); }};
+const ToolRegistration kCompareToolRegistered{60, [] { return std::unique_ptr<Tool>(new CompareTool); }};
 
 }  // namespace
 

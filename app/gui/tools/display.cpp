@@ -90,7 +90,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{120, [] { return std::unique_ptr<Tool>(new DisplayTool); }};
+const ToolRegistration kDisplayToolRegistered{120, [] { return std::unique_ptr<Tool>(new DisplayTool); }};
 
 }  // namespace
 

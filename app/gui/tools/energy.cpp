@@ -111,7 +111,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{50, [] { return std::unique_ptr<Tool>(new EnergyTool); }};
+const ToolRegistration kEnergyToolRegistered{50, [] { return std::unique_ptr<Tool>(new EnergyTool); }};
 
 }  // namespace
 

@@ -163,7 +163,7 @@ private:
     std::uint64_t loads_ = 0;  // the session's world the choice was made for
 };
 
-const ToolRegistration kRegistered{55, [] { return std::unique_ptr<Tool>(new GraphTool); }};
+const ToolRegistration kGraphToolRegistered{55, [] { return std::unique_ptr<Tool>(new GraphTool); }};
 
 }  // namespace
 

@@ -85,7 +85,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{30, [] { return std::unique_ptr<Tool>(new InspectorTool); }};
+const ToolRegistration kInspectorToolRegistered{30, [] { return std::unique_ptr<Tool>(new InspectorTool); }};
 
 }  // namespace
 

@@ -57,7 +57,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{70, [] { return std::unique_ptr<Tool>(new LastCollisionTool); }};
+const ToolRegistration kLastCollisionToolRegistered{70, [] { return std::unique_ptr<Tool>(new LastCollisionTool); }};
 
 }  // namespace
 

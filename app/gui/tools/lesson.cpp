@@ -202,7 +202,7 @@ nlohmann::ordered_json LessonTool::summary(const Session& session) {
 }
 
 namespace {
-const ToolRegistration kRegistered{10, [] { return std::unique_ptr<Tool>(new LessonTool); }};
+const ToolRegistration kLessonToolRegistered{10, [] { return std::unique_ptr<Tool>(new LessonTool); }};
 }  // namespace
 
 }  // namespace softbody::app

@@ -305,7 +305,7 @@ private:
     std::string probed_;
 };
 
-const ToolRegistration kRegistered{57, [] { return std::unique_ptr<Tool>(new MeasureTool); }};
+const ToolRegistration kMeasureToolRegistered{57, [] { return std::unique_ptr<Tool>(new MeasureTool); }};
 
 }  // namespace
 

@@ -90,7 +90,7 @@ private:
     char open_path_[1024] = {};
 };
 
-const ToolRegistration kRegistered{110, [] { return std::unique_ptr<Tool>(new MeshTool); }};
+const ToolRegistration kMeshToolRegistered{110, [] { return std::unique_ptr<Tool>(new MeshTool); }};
 
 }  // namespace
 

@@ -59,7 +59,7 @@ private:
     std::string confirm_overwrite_;  // path awaiting "overwrite?" (empty: none)
 };
 
-const ToolRegistration kRegistered{130, [] { return std::unique_ptr<Tool>(new PresetsTool); }};
+const ToolRegistration kPresetsToolRegistered{130, [] { return std::unique_ptr<Tool>(new PresetsTool); }};
 
 }  // namespace
 

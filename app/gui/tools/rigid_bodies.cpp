@@ -98,7 +98,7 @@ private:
     int rigid_selected_ = 0;  // the rigid body the tool shows
 };
 
-const ToolRegistration kRegistered{100, [] { return std::unique_ptr<Tool>(new RigidBodiesTool); }};
+const ToolRegistration kRigidBodiesToolRegistered{100, [] { return std::unique_ptr<Tool>(new RigidBodiesTool); }};
 
 }  // namespace
 

@@ -84,7 +84,7 @@ private:
 #endif
 };
 
-const ToolRegistration kRegistered{15, [] { return std::unique_ptr<Tool>(new ShareTool); }};
+const ToolRegistration kShareToolRegistered{15, [] { return std::unique_ptr<Tool>(new ShareTool); }};
 
 }  // namespace
 

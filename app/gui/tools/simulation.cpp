@@ -85,7 +85,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{20, [] { return std::unique_ptr<Tool>(new SimulationTool); }};
+const ToolRegistration kSimulationToolRegistered{20, [] { return std::unique_ptr<Tool>(new SimulationTool); }};
 
 }  // namespace
 

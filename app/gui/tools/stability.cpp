@@ -60,7 +60,7 @@ private:
     }
 };
 
-const ToolRegistration kRegistered{40, [] { return std::unique_ptr<Tool>(new StabilityTool); }};
+const ToolRegistration kStabilityToolRegistered{40, [] { return std::unique_ptr<Tool>(new StabilityTool); }};
 
 }  // namespace
 
