@@ -80,7 +80,7 @@ TEST(VelocitiesAreTheMotion, VerletStepIsVTimesHOnTheGround) {
 // a tick; before, 31 and 64 cm/s.)
 TEST(VelocitiesAreTheMotion, StackOfSoftCubesOnTheGround) {
     for (const char* integrator : {"verlet", "symplectic_euler"}) {
-        World world = world_of(load_scene(std::string(SOFTBODY_ASSETS) + "/scenes/soft_stack.json"), integrator);
+        World world = world_of(load_scene(SOFTBODY_ASSETS "/scenes/soft_stack.json"), integrator);
         world.run(250);
         ASSERT_EQ(world.status(), Status::Ok) << integrator;
         const Speeds s = speeds(world, 0, 1e-4f);
