@@ -50,7 +50,7 @@ constexpr const char* kVertexOptions = "qhull Qs";
 
 const std::string kWho = "convex hull: ";
 
-std::string number(double x) {
+std::string three_digits(double x) {
     std::ostringstream out;
     out.precision(3);
     out << x;
@@ -373,7 +373,7 @@ ConvexHull convex_hull(std::span<const Vec3d> points, std::size_t max_vertices) 
     std::vector<std::uint32_t> all(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) all[i] = static_cast<std::uint32_t>(i);
     const Spanning span = spanning_simplex(q, all);
-    const std::string within = " (within " + number(flat_tolerance * diagonal) + ")";
+    const std::string within = " (within " + three_digits(flat_tolerance * diagonal) + ")";
     if (span.from_line <= flat_tolerance) throw InputError(kWho + set + " spans no volume: they lie on one line" + within);
     if (span.from_plane <= flat_tolerance) throw InputError(kWho + set + " spans no volume: they lie on one plane" + within);
 

@@ -7,12 +7,6 @@ namespace softbody {
 
 namespace {
 
-void copy(const Vec3Array& from, Vec3Array& to) {
-    to.x = from.x;
-    to.y = from.y;
-    to.z = from.z;
-}
-
 // RK4's stage s: w = h/2, h/2, h from the start; its weight in the sum: 2, 2, 1.
 float rk4_offset(int s, float h) { return s < 3 ? 0.5f * h : h; }
 float rk4_weight(int s) { return s < 3 ? 2.0f : 1.0f; }
@@ -67,8 +61,8 @@ void explicit_euler_update(SoftBody& body, float h) {
 //   stage s: x_s = x + v_{s-1} w_s,  v_s = v + a_{s-1} w_s,  a_s = a(x_s, v_s)
 //   with w = h/2, h/2, h; then x += h/6 (v_1 + 2 v_2 + 2 v_3 + v_4), same for v with a.
 void rk4_begin(SoftBody& body) {
-    copy(body.v, body.v_stage);
-    copy(body.v, body.v_sum);
+    body.v_stage = body.v;
+    body.v_sum = body.v;
     body.x_tmp.resize(body.particle_count());
 }
 

@@ -16,7 +16,7 @@ namespace softbody {
 
 namespace {
 
-std::string number(double x) {
+std::string nine_digits(double x) {
     std::ostringstream out;
     out.precision(9);
     out << x;
@@ -25,7 +25,7 @@ std::string number(double x) {
 
 void require_size(const char* what, double value) {
     if (!(value > 0.0) || !std::isfinite(value)) {
-        throw InputError(std::string(what) + " must be a positive finite number, got " + number(value));
+        throw InputError(std::string(what) + " must be a positive finite number, got " + nine_digits(value));
     }
 }
 
@@ -41,8 +41,8 @@ Mat3 to_center(const Mat3& about_o, double mass, const Vec3d& c) {
 
 MassProperties box_mass_properties(const Vec3d& size) {
     if (!(size.x > 0.0 && size.y > 0.0 && size.z > 0.0) || !is_finite(size)) {
-        throw InputError("box size must be three positive finite numbers, got " + number(size.x) + " x " +
-                         number(size.y) + " x " + number(size.z));
+        throw InputError("box size must be three positive finite numbers, got " + nine_digits(size.x) + " x " +
+                         nine_digits(size.y) + " x " + nine_digits(size.z));
     }
     const double a = size.x, b = size.y, c = size.z;
     MassProperties out;

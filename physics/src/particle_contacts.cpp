@@ -8,7 +8,7 @@
 namespace softbody {
 
 namespace {
-constexpr double kStaticSpeed = 1e-4;  // m/s across the surface: below it, the particle is at rest (Eq. 24)
+constexpr double kParticleRestSpeed = 1e-4;  // m/s across the surface: below it, the particle is at rest (Eq. 24)
 }  // namespace
 
 void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,
@@ -65,7 +65,7 @@ void particle_rigid_contacts(const SoftBody& body, std::int32_t soft, std::span<
             c.arm_b = hit->point - m.x;
             const Vec3d v_rel = Vec3d(body.v[i]) - (m.v + cross(m.omega, c.arm_b));
             const Vec3d v_t = v_rel - c.normal * dot(v_rel, c.normal);
-            c.static_friction = length(v_t) < kStaticSpeed ? mu_s : c.friction;
+            c.static_friction = length(v_t) < kParticleRestSpeed ? mu_s : c.friction;
             out.push_back(c);
         }
     }

@@ -12,7 +12,7 @@ namespace softbody {
 
 namespace {
 // The least work worth another thread: bodies (a box each), pairs (a narrow-phase test each).
-constexpr std::size_t kBodyGrain = 128;
+constexpr std::size_t kBoxGrain = 128;
 constexpr std::size_t kPairGrain = 32;
 // Up to this many bodies woken at once, their pairs are found by testing each one's box against
 // every other, cheaper than sorting thousands of boxes again; more, by the sweep. (In bin:3000's
@@ -213,7 +213,7 @@ std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<con
     }
     scratch.boxes.resize(n);
     scratch.margins.resize(n);
-    for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for_chunks(pool, n, kBoxGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, motions, b, scratch);
     });
     overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
@@ -239,7 +239,7 @@ void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<cons
     if (scratch.boxes.size() != n) {
         scratch.boxes.resize(n);
         scratch.margins.resize(n);
-        for_chunks(pool, n, kBodyGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for_chunks(pool, n, kBoxGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
             for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, {}, b, scratch);
         });
     }

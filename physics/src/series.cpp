@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
-std::string number_text(double x) {
+std::string shortest_text(double x) {
     if (!std::isfinite(x)) return "";
     char text[32];
     const auto result = std::to_chars(text, text + sizeof text, x);
@@ -51,7 +51,7 @@ std::string tick_time_text(std::uint64_t ticks, float dt) {
     const std::size_t decimals = point == std::string::npos ? 0 : dt_text.size() - point - 1;
     // Exact while the product fits 64 bits (ticks up to 2^32 of a dt of at most nine digits).
     if (dt_text.find('e') != std::string::npos || ticks > (std::uint64_t(1) << 32) || digits.size() > 9) {
-        return number_text(double(ticks) * double(dt));
+        return shortest_text(double(ticks) * double(dt));
     }
     std::uint64_t product = ticks * std::stoull(digits);
     std::string whole;
@@ -160,7 +160,7 @@ std::string Series::csv_header() const {
 
 std::string Series::csv_row(std::size_t row) const {
     std::string out = tick_time_text(ticks_[row], dts_[row]);
-    for (std::size_t k = 1; k < columns_.size(); ++k) out += "," + number_text(data_[k][row]);
+    for (std::size_t k = 1; k < columns_.size(); ++k) out += "," + shortest_text(data_[k][row]);
     return out + "\r\n";
 }
 

@@ -20,16 +20,16 @@ namespace softbody {
 
 namespace {
 
-std::string number(double x) {
+std::string six_digits(double x) {
     std::ostringstream out;
     out.precision(6);
     out << x;
     return out.str();
 }
 
-void require_size(const std::string& what, double value) {
+void require_mesh_size(const std::string& what, double value) {
     if (!(value > 0.0) || !std::isfinite(value)) {
-        throw InputError(what + " must be a positive finite number, got " + number(value));
+        throw InputError(what + " must be a positive finite number, got " + six_digits(value));
     }
 }
 
@@ -50,8 +50,8 @@ struct Builder {
 
 Mesh box_mesh(const Vec3d& size) {
     if (!(size.x > 0.0 && size.y > 0.0 && size.z > 0.0) || !is_finite(size)) {
-        throw InputError("box size must be three positive finite numbers, got " + number(size.x) + " x " +
-                         number(size.y) + " x " + number(size.z));
+        throw InputError("box size must be three positive finite numbers, got " + six_digits(size.x) + " x " +
+                         six_digits(size.y) + " x " + six_digits(size.z));
     }
     Builder b;
     // Corner i has bit 0 for +x, bit 1 for +y, bit 2 for +z.
@@ -71,7 +71,7 @@ Mesh box_mesh(const Vec3d& size) {
             b.triangle(quad[0], quad[2], quad[3]);
         }
     }
-    return build_mesh(b.raw, "box " + number(size.x) + " x " + number(size.y) + " x " + number(size.z));
+    return build_mesh(b.raw, "box " + six_digits(size.x) + " x " + six_digits(size.y) + " x " + six_digits(size.z));
 }
 
 namespace {
@@ -156,7 +156,7 @@ RawMesh icosphere_raw(const Icosphere& ico, double radius) {
 }
 
 std::string sphere_source(double radius, int subdivisions) {
-    return "sphere r " + number(radius) + " (icosphere, " + std::to_string(subdivisions) + " subdivisions)";
+    return "sphere r " + six_digits(radius) + " (icosphere, " + std::to_string(subdivisions) + " subdivisions)";
 }
 
 // Each level made once, on first use, from any thread.
@@ -175,7 +175,7 @@ const Icosphere& icosphere(int subdivisions) {
 }  // namespace
 
 RawMesh sphere_raw_mesh(double radius, int subdivisions) {
-    require_size("sphere radius", radius);
+    require_mesh_size("sphere radius", radius);
     require_subdivisions(subdivisions);
     return icosphere_raw(icosphere(subdivisions), radius);
 }
@@ -185,7 +185,7 @@ RawMesh sphere_raw_mesh(double radius, int subdivisions) {
 // triangle's normal keeps its direction), as the tests check against build_mesh, at a tenth of
 // the time. A pile of a thousand balls, each with its own radius, loads in a fraction of a second.
 Mesh sphere_mesh(double radius, int subdivisions) {
-    require_size("sphere radius", radius);
+    require_mesh_size("sphere radius", radius);
     require_subdivisions(subdivisions);
     const Icosphere& ico = icosphere(subdivisions);
     Mesh mesh = ico.welded;
@@ -195,8 +195,8 @@ Mesh sphere_mesh(double radius, int subdivisions) {
 }
 
 Mesh cylinder_mesh(double radius, double height, int segments) {
-    require_size("cylinder radius", radius);
-    require_size("cylinder height", height);
+    require_mesh_size("cylinder radius", radius);
+    require_mesh_size("cylinder height", height);
     constexpr int kMaxSegments = static_cast<int>(kMaxParticles / 2) - 1;  // 2 rings and 2 centres
     if (segments < 3 || segments > kMaxSegments) {
         throw InputError("cylinder segments must be 3 to " + std::to_string(kMaxSegments) + ", got " +
@@ -223,7 +223,7 @@ Mesh cylinder_mesh(double radius, double height, int segments) {
         b.triangle(top_center, t0, t1);
         b.triangle(bottom_center, b1, b0);
     }
-    return build_mesh(b.raw, "cylinder r " + number(radius) + " h " + number(height) + " (" +
+    return build_mesh(b.raw, "cylinder r " + six_digits(radius) + " h " + six_digits(height) + " (" +
                                  std::to_string(segments) + " segments)");
 }
 

@@ -10,16 +10,6 @@ namespace softbody {
 
 namespace {
 
-void copy(const Vec3Array& from, Vec3Array& to) {
-    to.x = from.x;
-    to.y = from.y;
-    to.z = from.z;
-}
-
-}  // namespace
-
-namespace {
-
 // The turn that takes the file's up axis to +z (a right angle about x or y, a half turn for -z).
 Vec3 turn_up(const std::string& up, Vec3 v) {
     if (up == "y") return {v.x, -v.z, v.y};    // +90 degrees about x: y -> z
@@ -117,7 +107,7 @@ void build_particles(SoftBody& body) {
         for (SkinBinding& b : body.skin) b.offset *= body.scale_used;
     }
 
-    copy(body.rest, body.x);
+    body.x = body.rest;
     body.v.resize(n);
     // Every particle moves with the body: v = v_0 + w x (x - c), a rigid motion at the start.
     const bool spin = p.angular_velocity.x != 0.0f || p.angular_velocity.y != 0.0f || p.angular_velocity.z != 0.0f;
@@ -134,7 +124,7 @@ void build_particles(SoftBody& body) {
 
     body.verlet_step.resize(n);
     body.verlet_h = 0.0f;  // Verlet's step is made from v at the first step
-    copy(body.x, body.x_tick_prev);
+    body.x_tick_prev = body.x;
     body.force.resize(n);
     for (auto& a : body.accel) a.resize(n);
     body.contacts.clear();

@@ -47,12 +47,6 @@ constexpr double kRestingSpeed = 0.01;
 // RK4 at h gamma 2.9 a cube's particle went 14 cm into a ball.
 constexpr double kContactStepOmega = 1.0;
 
-void copy(const Vec3Array& from, Vec3Array& to) {
-    to.x = from.x;
-    to.y = from.y;
-    to.z = from.z;
-}
-
 }  // namespace
 
 const std::vector<SoftContact>& World::soft_contacts() const { return soft_contacts_->contacts(); }
@@ -232,8 +226,8 @@ void World::step(float h) {
     // And where each particle began it, for its contacts and its impacts with the ground.
     if (contacts || settings_.ground) {
         for (SoftBody& body : soft_) {
-            copy(body.v, body.v_step_start);
-            copy(body.x, body.x_step_start);
+            body.v_step_start = body.v;
+            body.x_step_start = body.x;
         }
     }
     if (soft_touching_) soft_contacts_->begin_substep(soft_, rigid_, y_, *pool_);
@@ -422,7 +416,7 @@ void World::add_woken_contacts(double reach, const std::vector<std::uint8_t>& wa
 // or one substep of it): anchors, masses, the last interval's impulses. Returns the substeps to
 // run: `steps`, or with contacts at least kContactSubsteps a tick.
 int World::begin_contacts(double interval, int steps) {
-    for (SoftBody& body : soft_) copy(body.v, body.v_step_start);
+    for (SoftBody& body : soft_) body.v_step_start = body.v;
     if (contacts_.empty()) return steps;
     steps = std::max(steps, int(std::ceil(double(kContactSubsteps) * interval / double(settings_.dt) - 1e-9)));
     ContactSettings settings;
@@ -533,10 +527,10 @@ void World::tick() {
         }
         if (first) {
             for (SoftBody& body : soft_) {
-                copy(body.x, body.x_tick_prev);
-                copy(body.x, body.x_good);
-                copy(body.v, body.v_good);
-                copy(body.verlet_step, body.verlet_step_good);
+                body.x_tick_prev = body.x;
+                body.x_good = body.x;
+                body.v_good = body.v;
+                body.verlet_step_good = body.verlet_step;
                 body.verlet_h_good = body.verlet_h;
             }
         }
@@ -569,10 +563,10 @@ void World::tick() {
     if (status_ != Status::Ok) {
         // Keep the last finite state on show; nothing downstream ever sees a NaN.
         for (SoftBody& body : soft_) {
-            copy(body.x_good, body.x);
-            copy(body.v_good, body.v);
-            copy(body.verlet_step_good, body.verlet_step);
-            copy(body.x, body.x_tick_prev);
+            body.x = body.x_good;
+            body.v = body.v_good;
+            body.verlet_step = body.verlet_step_good;
+            body.x_tick_prev = body.x;
             body.verlet_h = body.verlet_h_good;
         }
         y_ = y_good_;

@@ -15,8 +15,6 @@
 namespace softbody::test {
 namespace {
 
-bool keeps_energy(const char* integrator) { return std::string(integrator) != "explicit_euler"; }
-
 std::string with_integrator(std::string json, const char* integrator) {
     return "{\"integrator\": \"" + std::string(integrator) + "\", " + json.substr(1);
 }

@@ -12,7 +12,6 @@
 namespace softbody::test {
 namespace {
 
-constexpr double kG = 9.81;
 constexpr float kMuS = 0.6f, kMuD = 0.4f;
 
 FlatKeys ground_params() {

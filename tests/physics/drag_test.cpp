@@ -10,8 +10,6 @@
 namespace softbody::test {
 namespace {
 
-constexpr double kG = 9.81;
-
 FlatKeys drag_params(float rho, float C_D, float m) {
     FlatKeys p = bare_params();
     p.gravity = {0.0f, 0.0f, float(-kG)};

@@ -12,7 +12,6 @@
 namespace softbody::test {
 namespace {
 
-constexpr double kG = 9.81;
 constexpr double kRadius = 0.1;
 
 // A solid ball of radius 0.1 m resting on the ground, moving at v (m/s, along x) and turning at

@@ -11,10 +11,10 @@
 namespace softbody::test {
 namespace {
 
-std::string scene_path(const std::string& name) { return std::string(SOFTBODY_ASSETS) + "/scenes/" + name; }
+std::string bundled_scene(const std::string& name) { return std::string(SOFTBODY_ASSETS) + "/scenes/" + name; }
 
 World world_of_file(const std::string& name, int threads = 1) {
-    return World((load_scene(scene_path(name))), WorldOptions{threads});
+    return World((load_scene(bundled_scene(name))), WorldOptions{threads});
 }
 
 Vec3d centre(const World& world, std::size_t b) {
@@ -286,7 +286,7 @@ int crossings(const World& world, std::size_t b, SideRecord& record) {
 // The sheet falling over the bar, its halves together: with self contact no particle passes
 // through the sheet; without it, the same fall lets some through (the check can fail).
 TEST(SoftContact, FoldedSheetNeverCrossesItself) {
-    Scene scene = load_scene(scene_path("fold.json"));
+    Scene scene = load_scene(bundled_scene("fold.json"));
     ASSERT_TRUE(scene.soft_bodies.at(0).self_collision);
     World with((scene));
     scene.soft_bodies[0].self_collision = false;

@@ -18,8 +18,6 @@
 namespace softbody::test {
 namespace {
 
-bool keeps_energy(const std::string& integrator) { return integrator != "explicit_euler"; }
-
 std::string number(double x) {
     char text[64];
     std::snprintf(text, sizeof text, "%.6g", x);

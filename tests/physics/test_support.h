@@ -30,9 +30,13 @@
 namespace softbody::test {
 
 inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kG = 9.81;  // m/s^2: the scenes' gravity unless they say otherwise
 
 // The four integrators a scene can name, for the tests that run under each.
 inline constexpr const char* kIntegrators[] = {"verlet", "symplectic_euler", "explicit_euler", "rk4"};
+
+// Whether an integrator keeps the energy of a body in flight: explicit Euler gains it by itself.
+inline bool keeps_energy(std::string_view integrator) { return integrator != "explicit_euler"; }
 
 // A world of a scene given as JSON text.
 inline World world_of(const std::string& json, int threads = 1) {
