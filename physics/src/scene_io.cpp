@@ -147,16 +147,21 @@ std::string where_after(const std::string& origin, const std::string& text, std:
     return origin + ":" + std::to_string(line_of_offset(text, at));
 }
 
-// The offset of the `index`-th object of the array under `array_key`, roughly: where its name
-// (or, without one, the array) appears. For pointing errors at a line.
-std::size_t element_offset(const std::string& text, const std::string& array_key, const json& element) {
-    const auto array_at = text.find("\"" + array_key + "\"");
-    std::size_t from = array_at == std::string::npos ? 0 : array_at;
+// Where an object of an array appears in the text, roughly, for pointing errors at a line: its
+// name, looked for from `from` (the array's key for the first object, the object before it for
+// the others, so a file of many is read in one pass), or without a name `from` itself.
+std::size_t element_offset(const std::string& text, std::size_t from, const json& element) {
     if (element.is_object() && element.contains("name") && element["name"].is_string()) {
         const auto named = text.find("\"" + element["name"].get<std::string>() + "\"", from);
-        if (named != std::string::npos) from = named;
+        if (named != std::string::npos) return named;
     }
     return from;
+}
+
+// Where the array under `array_key` begins (0 when its key is not found).
+std::size_t array_offset(const std::string& text, const std::string& array_key) {
+    const auto at = text.find("\"" + array_key + "\"");
+    return at == std::string::npos ? 0 : at;
 }
 
 std::string relative_to(const std::string& origin, const std::string& path) {
@@ -166,13 +171,14 @@ std::string relative_to(const std::string& origin, const std::string& path) {
 }
 
 // The keys of one object of a list ("soft_bodies", "rigid_bodies", "springs"), each read into
-// `def` (set_key checks it); an error names the file and line, the thing and the key.
+// `def` (set_key checks it); an error names the file and line, the thing and the key. The line
+// is counted only for an error: counted for every key, from the file's start each time, it made
+// a file of thousands of bodies load in quadratic time.
 template <class D>
 void read_keys(const json& element, KeyOwner owner, D& def, const std::string& what, const std::string& origin,
                const std::string& text, std::size_t at, std::initializer_list<std::string_view> skip) {
     for (const auto& [key, value] : element.items()) {
         if (std::find(skip.begin(), skip.end(), key) != skip.end()) continue;
-        const std::string line = where_after(origin, text, at, key) + ": ";
         const KeyInfo* info = find_key(owner, key);
         KeyValue read;
         try {
@@ -184,22 +190,22 @@ void read_keys(const json& element, KeyOwner owner, D& def, const std::string& w
             }
             read = key_value(*info, value);
         } catch (const InputError& e) {
-            throw InputError(line + what + ": " + e.what());
+            throw InputError(where_after(origin, text, at, key) + ": " + what + ": " + e.what());
         }
         try {
             set_key(def, *info, read);  // says whose key it is itself
         } catch (const InputError& e) {
-            throw InputError(line + e.what());
+            throw InputError(where_after(origin, text, at, key) + ": " + e.what());
         }
     }
 }
 
 RigidBodyDef parse_rigid_body(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
-    const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
-    if (!element.is_object()) throw InputError(line + ": each of \"rigid_bodies\" must be an object {\"name\": ..., \"shape\": ...}");
+    const auto line = [&] { return origin + ":" + std::to_string(line_of_offset(text, at)); };  // for an error
+    if (!element.is_object()) throw InputError(line() + ": each of \"rigid_bodies\" must be an object {\"name\": ..., \"shape\": ...}");
     RigidBodyDef def;
     if (!element.contains("name") || !element["name"].is_string() || element["name"].get<std::string>().empty()) {
-        throw InputError(line + ": a rigid body needs a \"name\" (a string)");
+        throw InputError(line() + ": a rigid body needs a \"name\" (a string)");
     }
     def.name = element["name"].get<std::string>();
     const std::string what = "rigid body '" + printable(def.name) + "'";
@@ -212,15 +218,15 @@ RigidBodyDef parse_rigid_body(const json& element, const std::string& origin, co
 }
 
 SoftBodyDef parse_soft_body(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
-    const std::string line = origin + ":" + std::to_string(line_of_offset(text, at));
+    const auto line = [&] { return origin + ":" + std::to_string(line_of_offset(text, at)); };  // for an error
     if (!element.is_object() || !element.contains("name") || !element["name"].is_string() || element["name"].get<std::string>().empty()) {
-        throw InputError(line + ": each of \"soft_bodies\" must be an object with a \"name\" and a \"mesh\"");
+        throw InputError(line() + ": each of \"soft_bodies\" must be an object with a \"name\" and a \"mesh\"");
     }
     SoftBodyDef def;
     def.name = element["name"].get<std::string>();
     const std::string what = "soft body '" + printable(def.name) + "'";
     read_keys(element, KeyOwner::SoftBody, def, what, origin, text, at, {"name"});
-    if (def.mesh.empty()) throw InputError(line + ": " + what + " needs a \"mesh\"");
+    if (def.mesh.empty()) throw InputError(line() + ": " + what + " needs a \"mesh\"");
     if (element.contains("position") && element.contains("init_height")) {
         throw InputError(where_after(origin, text, at, "position") + ": " + what + ": give 'position' or 'init_height', not both");
     }
@@ -497,13 +503,17 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
         scene.soft_bodies.push_back(std::move(flat));
     }
     if (root.contains("soft_bodies")) {
+        std::size_t at = array_offset(text, "soft_bodies");
         for (const json& element : root["soft_bodies"]) {
-            scene.soft_bodies.push_back(parse_soft_body(element, origin, text, element_offset(text, "soft_bodies", element)));
+            at = element_offset(text, at, element);
+            scene.soft_bodies.push_back(parse_soft_body(element, origin, text, at));
         }
     }
     if (root.contains("rigid_bodies")) {
+        std::size_t at = array_offset(text, "rigid_bodies");
         for (const json& element : root["rigid_bodies"]) {
-            scene.rigid_bodies.push_back(parse_rigid_body(element, origin, text, element_offset(text, "rigid_bodies", element)));
+            at = element_offset(text, at, element);
+            scene.rigid_bodies.push_back(parse_rigid_body(element, origin, text, at));
         }
     }
     if (root.contains("springs")) {

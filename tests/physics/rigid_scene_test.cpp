@@ -165,6 +165,24 @@ TEST(RigidScene, BadBodiesAreRefusedNamingBodyAndKey) {
     EXPECT_REFUSED_NAMING(def_of("{\"rigid_bodies\": 3}"), "rigid_bodies", "array");
 }
 
+// In a file of many bodies, a line each, an error points at the line of the body and key it is
+// in: the last of 2,000, the 1,000th (a key it does not take), and a soft body after them.
+TEST(RigidScene, InAFileOfThousandsTheErrorNamesItsLine) {
+    const auto file = [](int bad_box, const std::string& bad_key, bool soft_after) {
+        std::string json = "{\"rigid_bodies\": [\n";
+        for (int i = 1; i <= 2000; ++i) {
+            json += "  {\"name\": \"box" + std::to_string(i) + "\", \"shape\": \"box\", \"size\": [1, 1, 1], " +
+                    (i == bad_box ? bad_key : "\"mass\": 1") + "}" + (i < 2000 ? ",\n" : "\n");
+        }
+        json += "]";
+        if (soft_after) json += ",\n\"soft_bodies\": [\n  {\"name\": \"ball\", \"mesh\": \"ball:1\", \"stiffness\": -3}\n]";
+        return json + "}\n";
+    };
+    EXPECT_REFUSED_NAMING(def_of(file(2000, "\"mass\": -1", false)), "scene.json:2001:", "'box2000'", "'mass'");
+    EXPECT_REFUSED_NAMING(def_of(file(1000, "\"colour\": 2", false)), "scene.json:1001:", "'box1000'", "'colour'");
+    EXPECT_REFUSED_NAMING(def_of(file(0, "", true)), "scene.json:2004:", "'ball'", "'stiffness'");
+}
+
 TEST(RigidScene, FlatAndMissingMeshesAreRefusedNamingTheBody) {
     TempDir dir;
     dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
