@@ -235,8 +235,9 @@ SoftBodyDef parse_soft_body(const json& element, const std::string& origin, cons
     return def;
 }
 
-SpringEndDef parse_spring_end(const json& value, const std::string& where, const char* name) {
-    const std::string what = where + ": spring end '" + name + "'";
+// An error names the end; the caller puts the spring's line before it.
+SpringEndDef parse_spring_end(const json& value, const char* name) {
+    const std::string what = std::string("spring end '") + name + "'";
     if (!value.is_object()) throw InputError(what + " must be an object {\"body\": NAME, \"point\": [x, y, z]} or {\"body\": NAME, \"vertex\": K}");
     SpringEndDef end;
     for (const auto& [key, item] : value.items()) {
@@ -264,21 +265,25 @@ SpringEndDef parse_spring_end(const json& value, const std::string& where, const
 }
 
 SpringDef parse_spring(const json& element, const std::string& origin, const std::string& text, std::size_t at) {
-    const std::string where = origin + ":" + std::to_string(line_of_offset(text, at));
-    if (!element.is_object()) throw InputError(where + ": each of \"springs\" must be an object {\"a\": ..., \"b\": ..., \"stiffness\": k}");
+    const auto where = [&] { return origin + ":" + std::to_string(line_of_offset(text, at)); };  // for an error
+    if (!element.is_object()) throw InputError(where() + ": each of \"springs\" must be an object {\"a\": ..., \"b\": ..., \"stiffness\": k}");
     SpringDef def;
     if (element.contains("name")) {
         if (!element["name"].is_string() || element["name"].get<std::string>().empty()) {
-            throw InputError(where + ": a spring's \"name\" must be a non-empty string");
+            throw InputError(where() + ": a spring's \"name\" must be a non-empty string");
         }
         def.name = element["name"].get<std::string>();
     }
     const std::string what = def.name.empty() ? std::string("spring") : "spring '" + printable(def.name) + "'";
-    if (element.contains("a")) def.a = parse_spring_end(element["a"], where, "a");
-    if (element.contains("b")) def.b = parse_spring_end(element["b"], where, "b");
+    try {
+        if (element.contains("a")) def.a = parse_spring_end(element["a"], "a");
+        if (element.contains("b")) def.b = parse_spring_end(element["b"], "b");
+    } catch (const InputError& e) {
+        throw InputError(where() + ": " + e.what());
+    }
     read_keys(element, KeyOwner::Spring, def, what, origin, text, at, {"name", "a", "b"});
-    if (!element.contains("a") || !element.contains("b")) throw InputError(where + ": a spring needs both ends, \"a\" and \"b\"");
-    if (!element.contains("stiffness")) throw InputError(where + ": a spring needs \"stiffness\" (N/m)");
+    if (!element.contains("a") || !element.contains("b")) throw InputError(where() + ": a spring needs both ends, \"a\" and \"b\"");
+    if (!element.contains("stiffness")) throw InputError(where() + ": a spring needs \"stiffness\" (N/m)");
     return def;
 }
 

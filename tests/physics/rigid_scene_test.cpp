@@ -166,7 +166,8 @@ TEST(RigidScene, BadBodiesAreRefusedNamingBodyAndKey) {
 }
 
 // In a file of many bodies, a line each, an error points at the line of the body and key it is
-// in: the last of 2,000, the 1,000th (a key it does not take), and a soft body after them.
+// in: the last of 2,000, the 1,000th (a key it does not take), a soft body after them, and the
+// 1,500th of 2,000 springs.
 TEST(RigidScene, InAFileOfThousandsTheErrorNamesItsLine) {
     const auto file = [](int bad_box, const std::string& bad_key, bool soft_after) {
         std::string json = "{\"rigid_bodies\": [\n";
@@ -181,6 +182,14 @@ TEST(RigidScene, InAFileOfThousandsTheErrorNamesItsLine) {
     EXPECT_REFUSED_NAMING(def_of(file(2000, "\"mass\": -1", false)), "scene.json:2001:", "'box2000'", "'mass'");
     EXPECT_REFUSED_NAMING(def_of(file(1000, "\"colour\": 2", false)), "scene.json:1001:", "'box1000'", "'colour'");
     EXPECT_REFUSED_NAMING(def_of(file(0, "", true)), "scene.json:2004:", "'ball'", "'stiffness'");
+
+    // And of 2,000 springs, a line each, the 1,500th with an end of two numbers.
+    std::string springs = "{\"rigid_bodies\": [{\"name\": \"p\", \"shape\": \"sphere\", \"radius\": 0.1}],\n\"springs\": [\n";
+    for (int i = 1; i <= 2000; ++i) {
+        springs += std::string("  {\"a\": {\"body\": \"p\"}, \"b\": {\"point\": ") + (i == 1500 ? "[0, 0]" : "[0, 0, 1]") +
+                   "}, \"stiffness\": 1}" + (i < 2000 ? ",\n" : "\n");
+    }
+    EXPECT_REFUSED_NAMING(def_of(springs + "]}\n"), "scene.json:1502: spring end 'b'", "\"point\"");
 }
 
 TEST(RigidScene, FlatAndMissingMeshesAreRefusedNamingTheBody) {
