@@ -7,27 +7,56 @@ namespace softbody {
 
 namespace {
 
-// Solves K_SS x_S = b_S for the points in `set` (at most four), with 1e-9 of the diagonal
-// added when there are two or more (three collinear corners leave it singular). False when
-// singular all the same.
+// Solves K_SS x_S = b_S for the M points in `index`, with 1e-9 of the diagonal added when there
+// are two or more (three collinear corners leave it singular): K is symmetric and positive
+// semi-definite (J M^-1 J^T), so K_SS = L D L^T with D > 0, and x_S comes of two triangular
+// solves (no inverse: a set is solved for one right-hand side). False when a pivot is not
+// positive (singular all the same). M known when compiled, so that the loops unroll.
+template <int M>
+bool solve_factored(const int (&index)[4], const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+    double L[4][4], d[4], inv_d[4], z[4];
+    for (int r = 0; r < M; ++r) {
+        for (int c = 0; c <= r; ++c) {
+            double sum = K[index[r]][index[c]];
+            if (M > 1 && r == c) sum *= 1.0 + 1e-9;
+            for (int k = 0; k < c; ++k) sum -= L[r][k] * L[c][k] * d[k];
+            if (r == c) {
+                if (!(sum > 0.0)) return false;
+                d[r] = sum;
+                inv_d[r] = 1.0 / sum;
+            } else {
+                L[r][c] = sum * inv_d[c];
+            }
+        }
+    }
+    for (int r = 0; r < M; ++r) {
+        double sum = b[index[r]];
+        for (int k = 0; k < r; ++k) sum -= L[r][k] * z[k];
+        z[r] = sum;
+    }
+    for (int r = M - 1; r >= 0; --r) {
+        double sum = z[r] * inv_d[r];
+        for (int k = r + 1; k < M; ++k) sum -= L[k][r] * z[k];
+        z[r] = sum;
+    }
+    for (int r = 0; r < M; ++r) x[index[r]] = z[r];
+    return true;
+}
+
+// Solves K_SS x_S = b_S for the points in `set` (at most four); x is 0 for the others.
 bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
     int index[4], m = 0;
     for (int i = 0; i < n; ++i) {
         if (set & (1u << i)) index[m++] = i;
     }
-    double A[4][4], A_inv[4][4];
-    for (int r = 0; r < m; ++r) {
-        for (int c = 0; c < m; ++c) A[r][c] = K[index[r]][index[c]];
-        if (m > 1) A[r][r] *= 1.0 + 1e-9;
-    }
-    if (!invert(m, A, A_inv)) return false;
     for (int i = 0; i < n; ++i) x[i] = 0.0;
-    for (int r = 0; r < m; ++r) {
-        double sum = 0.0;
-        for (int c = 0; c < m; ++c) sum += A_inv[r][c] * b[index[c]];
-        x[index[r]] = sum;
+    switch (m) {
+        case 1: return solve_factored<1>(index, K, b, x);
+        case 2: return solve_factored<2>(index, K, b, x);
+        case 3: return solve_factored<3>(index, K, b, x);
+        case 4: return solve_factored<4>(index, K, b, x);
+        default: return m == 0;
     }
-    return true;
 }
 
 // For n points, the sets of them (bit i: point i) in the order they are tried: the most points

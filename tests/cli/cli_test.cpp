@@ -238,12 +238,14 @@ TEST(Simulate, RigidBodiesAreReportedWithMomentumAndInertia) {
     EXPECT_NEAR(j.at("angular_momentum")[2].get<double>(), 5.0, 1e-12);
 }
 
-// min_z is the lowest point of any body's shape: boxes and balls settled in their bin report
-// the ground (to the millimetre the contacts let bodies sink), not the walls' bounding spheres
-// (-0.63 m), and a box turned 45 degrees about x its lowest edge, 2 - sqrt(1/2) m.
+// min_z is the lowest point of any body's shape: boxes and balls settled in their bin (all 30
+// asleep by 6 s) report the ground (to the millimetre the contacts let bodies sink), not the
+// walls' bounding spheres (-0.63 m), and a box turned 45 degrees about x its lowest edge,
+// 2 - sqrt(1/2) m.
 TEST(Simulate, MinZIsTheLowestPointOfAnyBodysShape) {
-    const Result pile = run({"simulate", "--scene", "boxes:30", "--seconds", "3"});
+    const Result pile = run({"simulate", "--scene", "boxes:30", "--seconds", "6"});
     ASSERT_EQ(pile.exit_code, 0) << describe(pile);
+    ASSERT_EQ(json::parse(pile.out).at("sleeping").get<int>(), 30);
     EXPECT_NEAR(json::parse(pile.out).at("min_z").get<double>(), 0.0, 1e-3);
     TempDir dir;
     const std::string scene = dir.write("tilted.json", "{\"gravity\": [0, 0, 0], \"rigid_bodies\": [{\"name\": \"cube\", "
