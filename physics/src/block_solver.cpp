@@ -7,39 +7,57 @@ namespace softbody {
 
 namespace {
 
-// Solves K_SS x_S = b_S for the M points in `index`, with 1e-9 of the diagonal added when there
-// are two or more (three collinear corners leave it singular): K is symmetric and positive
-// semi-definite (J M^-1 J^T), so K_SS = L D L^T with D > 0, and x_S comes of two triangular
-// solves (no inverse: a set is solved for one right-hand side). False when a pivot is not
-// positive (singular all the same). M known when compiled, so that the loops unroll.
+// Factors the symmetric positive definite M x M matrix A as L D L^T (L unit lower triangular,
+// below its diagonal in `f`, and 1 / D): false when a pivot is not positive. M known when
+// compiled, so that the loops unroll.
 template <int M>
-bool solve_factored(const int (&index)[4], const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
-    double L[4][4], d[4], inv_d[4], z[4];
+bool factor(const double (&A)[4][4], BlockFactor& f) {
+    double d[4];
     for (int r = 0; r < M; ++r) {
         for (int c = 0; c <= r; ++c) {
-            double sum = K[index[r]][index[c]];
-            if (M > 1 && r == c) sum *= 1.0 + 1e-9;
-            for (int k = 0; k < c; ++k) sum -= L[r][k] * L[c][k] * d[k];
+            double sum = A[r][c];
+            for (int k = 0; k < c; ++k) sum -= f.L[BlockFactor::below(r, k)] * f.L[BlockFactor::below(c, k)] * d[k];
             if (r == c) {
                 if (!(sum > 0.0)) return false;
                 d[r] = sum;
-                inv_d[r] = 1.0 / sum;
+                f.inv_d[r] = 1.0 / sum;
             } else {
-                L[r][c] = sum * inv_d[c];
+                f.L[BlockFactor::below(r, c)] = sum * f.inv_d[c];
             }
         }
     }
+    return true;
+}
+
+// y = A^-1 c through A's factors: two triangular solves.
+template <int M>
+void solve_factored(const BlockFactor& f, const double (&c)[4], double (&y)[4]) {
     for (int r = 0; r < M; ++r) {
-        double sum = b[index[r]];
-        for (int k = 0; k < r; ++k) sum -= L[r][k] * z[k];
-        z[r] = sum;
+        double sum = c[r];
+        for (int k = 0; k < r; ++k) sum -= f.L[BlockFactor::below(r, k)] * y[k];
+        y[r] = sum;
     }
     for (int r = M - 1; r >= 0; --r) {
-        double sum = z[r] * inv_d[r];
-        for (int k = r + 1; k < M; ++k) sum -= L[k][r] * z[k];
-        z[r] = sum;
+        double sum = y[r] * f.inv_d[r];
+        for (int k = r + 1; k < M; ++k) sum -= f.L[BlockFactor::below(k, r)] * y[k];
+        y[r] = sum;
     }
-    for (int r = 0; r < M; ++r) x[index[r]] = z[r];
+}
+
+// Solves K_SS x_S = b_S for the M points in `index`, with 1e-9 of the diagonal added when there
+// are two or more (three collinear corners leave it singular). False when singular all the same.
+template <int M>
+bool solve_points(const int (&index)[4], const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+    double A[4][4], c[4], y[4];
+    for (int r = 0; r < M; ++r) {
+        for (int k = 0; k <= r; ++k) A[r][k] = K[index[r]][index[k]];
+        if (M > 1) A[r][r] *= 1.0 + 1e-9;
+        c[r] = b[index[r]];
+    }
+    BlockFactor f;
+    if (!factor<M>(A, f)) return false;
+    solve_factored<M>(f, c, y);
+    for (int r = 0; r < M; ++r) x[index[r]] = y[r];
     return true;
 }
 
@@ -51,10 +69,10 @@ bool solve_set(int n, unsigned set, const double (&K)[4][4], const double (&b)[4
     }
     for (int i = 0; i < n; ++i) x[i] = 0.0;
     switch (m) {
-        case 1: return solve_factored<1>(index, K, b, x);
-        case 2: return solve_factored<2>(index, K, b, x);
-        case 3: return solve_factored<3>(index, K, b, x);
-        case 4: return solve_factored<4>(index, K, b, x);
+        case 1: return solve_points<1>(index, K, b, x);
+        case 2: return solve_points<2>(index, K, b, x);
+        case 3: return solve_points<3>(index, K, b, x);
+        case 4: return solve_points<4>(index, K, b, x);
         default: return m == 0;
     }
 }
@@ -71,56 +89,7 @@ constexpr unsigned kSetsBySize[5][16] = {
 
 }  // namespace
 
-namespace {
-
-// invert() for a size known when compiled, so that its loops unroll: the same operations in the
-// same order as for any n.
-template <int N>
-bool invert_fixed(const double (&A)[4][4], double (&inverse)[4][4]) {
-    double M[N][2 * N];
-    for (int r = 0; r < N; ++r) {
-        for (int c = 0; c < N; ++c) {
-            M[r][c] = A[r][c];
-            M[r][N + c] = r == c ? 1.0 : 0.0;
-        }
-    }
-    for (int c = 0; c < N; ++c) {
-        int pivot = c;
-        for (int r = c + 1; r < N; ++r) {
-            if (std::abs(M[r][c]) > std::abs(M[pivot][c])) pivot = r;
-        }
-        if (!(std::abs(M[pivot][c]) > 0.0)) return false;
-        if (pivot != c) {
-            for (int k = 0; k < 2 * N; ++k) std::swap(M[c][k], M[pivot][k]);
-        }
-        const double p = 1.0 / M[c][c];
-        for (int k = 0; k < 2 * N; ++k) M[c][k] *= p;
-        for (int r = 0; r < N; ++r) {
-            if (r == c || M[r][c] == 0.0) continue;
-            const double f = M[r][c];
-            for (int k = 0; k < 2 * N; ++k) M[r][k] -= f * M[c][k];
-        }
-    }
-    for (int r = 0; r < N; ++r)
-        for (int c = 0; c < N; ++c) inverse[r][c] = M[r][N + c];
-    return true;
-}
-
-}  // namespace
-
-// The inverse of an n x n matrix (n <= 4) by Gauss-Jordan elimination with partial pivoting;
-// false when a pivot vanishes.
-bool invert(int n, const double (&A)[4][4], double (&inverse)[4][4]) {
-    switch (n) {
-        case 1: return invert_fixed<1>(A, inverse);
-        case 2: return invert_fixed<2>(A, inverse);
-        case 3: return invert_fixed<3>(A, inverse);
-        case 4: return invert_fixed<4>(A, inverse);
-        default: return n == 0;
-    }
-}
-
-void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], BlockInverse& block) {
+void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], BlockSolve& block) {
     // What solves K for all points at once. Four corners on a plane: their normal velocities
     // depend on the bodies' motion only through v_n + (w_a - w_b) . (p x n), an affine function
     // of the point in the plane, so K has rank 3 and z, the affine dependency of the four
@@ -149,19 +118,22 @@ void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], Bloc
     if (!block.singular && n > 1) {
         for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
     }
-    if (!invert(n, A4, block.K_solve)) {
-        for (int x = 0; x < n; ++x)
-            for (int y = 0; y < n; ++y) block.K_solve[x][y] = 0.0;
+    switch (n) {
+        case 1: block.factored = factor<1>(A4, block.factor); break;
+        case 2: block.factored = factor<2>(A4, block.factor); break;
+        case 3: block.factored = factor<3>(A4, block.factor); break;
+        case 4: block.factored = factor<4>(A4, block.factor); break;
+        default: block.factored = false; break;
     }
 }
 
 namespace {
 
-// All N points pushing, through the inverse prepared for the tick: x and true when that fits
+// All N points pushing, through the factors prepared for the tick: x and true when that fits
 // (solve_block). N known when compiled, so that the loops unroll: the same operations in the
 // same order as for any n.
 template <int N>
-bool solve_all(const BlockInverse& block, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
+bool solve_all(const BlockSolve& block, const double (&K)[4][4], const double (&b)[4], double (&x)[4]) {
     double c[4] = {b[0], b[1], b[2], b[3]};
     if (block.singular) {
         double along = 0.0;
@@ -169,11 +141,7 @@ bool solve_all(const BlockInverse& block, const double (&K)[4][4], const double 
         for (int i = 0; i < N; ++i) c[i] -= along * block.z[i];
     }
     double y[4];
-    for (int r = 0; r < N; ++r) {
-        double sum = 0.0;
-        for (int k = 0; k < N; ++k) sum += block.K_solve[r][k] * c[k];
-        y[r] = sum;
-    }
+    solve_factored<N>(block.factor, c, y);
     // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
     // corners the answer is the least-squares one: where the targets are not those of one
     // motion of the face (corners at different gaps closing as far as each may), some
@@ -200,12 +168,12 @@ bool solve_all(const BlockInverse& block, const double (&K)[4][4], const double 
 // coupling; (K x)_i - b_i is point i's normal velocity above its target with impulses x, and it
 // must be zero where the point pushes (x_i > 0) and may be more where it does not (x_i = 0): a
 // linear complementarity problem, solved exactly by trying the sets of pushing points, all of
-// them first (with `K_solve`, prepared once a tick), then smaller sets, the first whose
+// them first (through K's factors, prepared once a tick), then smaller sets, the first whose
 // impulses all push and whose other points do not close. Four corners on a plane leave K
 // singular (three would hold the face: statically indeterminate): of the answers, the one with
-// the least impulses is taken (b's part along the null direction z removed, and K_solve's z
-// filled in), which shares the load evenly and changes smoothly as the bodies move.
-void solve_block(BlockInverse& block, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
+// the least impulses is taken (b's part along the null direction z removed, and z filled in
+// before K was factored), which shares the load evenly and changes smoothly as the bodies move.
+void solve_block(BlockSolve& block, int n, const double (&K)[4][4], const double (&b)[4], double (&x)[4],
                  bool all_points) {
     const auto fits = [&](unsigned set, const double (&y)[4]) {
         for (int i = 0; i < n; ++i) {
@@ -220,7 +188,7 @@ void solve_block(BlockInverse& block, int n, const double (&K)[4][4], const doub
         return true;
     };
     const unsigned full = (1u << n) - 1u;
-    if (all_points) {
+    if (all_points && block.factored) {
         bool fits_all = false;
         switch (n) {
             case 1: fits_all = solve_all<1>(block, K, b, x); break;

@@ -224,7 +224,7 @@ struct SolverManifold {
     // The points' coupling K (K_ij: point i's change of normal velocity per unit impulse at
     // point j), and what solves it for all points pushing (block_solver.h).
     double K[4][4] = {};
-    BlockInverse block;
+    BlockSolve block;
 };
 
 class ContactSolver {
