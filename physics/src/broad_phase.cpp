@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "collide_internal.h"
+#include "kept_memory.h"
 
 namespace softbody {
 
@@ -160,7 +161,12 @@ void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, 
     };
     std::vector<std::vector<BodyPair>> found(pool ? std::size_t(4 * pool->threads()) : 1);
     const std::size_t chunks = for_chunks(pool, sweep.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        sweep_from(begin, end, chunk == 0 ? out : found[chunk]);
+        if (chunk == 0) {
+            sweep_from(begin, end, out);
+        } else {
+            ChunkList taken(found[chunk]);
+            sweep_from(begin, end, *taken);
+        }
     });
     for (std::size_t chunk = 1; chunk < chunks; ++chunk) out.insert(out.end(), found[chunk].begin(), found[chunk].end());
     sort_pairs(out, boxes.size());

@@ -44,8 +44,8 @@ void sorted_keys(const std::vector<RigidContact>& contacts, std::vector<ContactR
     };
     if (parts.size() < most_chunks(pool)) parts.resize(most_chunks(pool));
     const std::size_t chunks = for_chunks(pool, contacts.size(), kScanGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        std::vector<Run>& part = parts[chunk];
-        part.clear();
+        ChunkList taken(parts[chunk]);
+        std::vector<Run>& part = *taken;
         std::size_t k = begin;
         while (k > 0 && k < end && same_pair(k, k - 1)) ++k;  // a run begun before this chunk
         while (k < end) {
@@ -363,8 +363,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     std::vector<std::vector<FoundPoints>>& parts = kept.found_parts;
     if (parts.size() < most_chunks(world.pool)) parts.resize(most_chunks(world.pool));
     const std::size_t chunks = for_chunks(world.pool, contacts.size(), kScanGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        std::vector<FoundPoints>& part = parts[chunk];
-        part.clear();
+        ChunkList own(parts[chunk]);
+        std::vector<FoundPoints>& part = *own;
         std::size_t k = begin;
         if (k > 0 && k < end && together(k, k - 1)) {
             std::size_t pair_begins = k - 1;

@@ -57,6 +57,27 @@ std::size_t place_chunks(std::vector<T>& out, std::size_t at, const std::vector<
     return begin[chunks];
 }
 
+// A chunk's own list from a table of them (one list a chunk, as place_chunks joins), taken out
+// of the table while the chunk's work appends to it and put back when it ends. The table's lists
+// sit side by side, two or three to a cache line: two threads appending to neighbouring ones
+// would each write the line the other keeps its list's end in, and hand it back and forth at
+// every append (in pyramid:10 at two threads the narrow phase took 2.7 times as long as on one).
+// Taken out, a list's ends live on its own thread's stack; its memory stays its own.
+template <class T>
+class ChunkList {
+public:
+    explicit ChunkList(std::vector<T>& home) : home_(home), list_(std::move(home)) { list_.clear(); }
+    ~ChunkList() { home_ = std::move(list_); }
+    ChunkList(const ChunkList&) = delete;
+    ChunkList& operator=(const ChunkList&) = delete;
+
+    std::vector<T>& operator*() { return list_; }
+
+private:
+    std::vector<T>& home_;
+    std::vector<T> list_;
+};
+
 // The same with nothing to fix.
 template <class T>
 std::size_t place_chunks(std::vector<T>& out, std::size_t at, const std::vector<std::vector<T>>& parts, std::size_t chunks,

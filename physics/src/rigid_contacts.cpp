@@ -127,13 +127,14 @@ std::size_t test_pairs(std::span<const RigidBody> bodies, std::span<const Collis
         scratch.new_points.resize(most);
     }
     const std::size_t chunks = for_chunks(pool, scratch.pairs.size(), kPairGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        std::vector<RigidContact>& found = scratch.found[chunk];
-        std::vector<ContactPoint>& points = scratch.points[chunk];
-        std::vector<CachedPair>& new_pairs = scratch.new_pairs[chunk];
-        std::vector<CachedPoint>& new_points = scratch.new_points[chunk];
-        found.clear();
-        new_pairs.clear();
-        new_points.clear();
+        ChunkList taken_found(scratch.found[chunk]);
+        ChunkList taken_points(scratch.points[chunk]);
+        ChunkList taken_pairs(scratch.new_pairs[chunk]);
+        ChunkList taken_new_points(scratch.new_points[chunk]);
+        std::vector<RigidContact>& found = *taken_found;
+        std::vector<ContactPoint>& points = *taken_points;
+        std::vector<CachedPair>& new_pairs = *taken_pairs;
+        std::vector<CachedPoint>& new_points = *taken_new_points;
         auto near = scratch.cache.pairs.cbegin();
         for (std::size_t k = begin; k < end; ++k) {
             const BodyPair& pair = scratch.pairs[k];

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "kept_memory.h"
 #include "physics/world.h"
 #include "soft_contacts.h"
 
@@ -97,8 +98,8 @@ bool World::wake_touched_islands() {
     // them), so the chunks' lists join in any order.
     std::vector<std::vector<std::uint32_t>> touched(std::size_t(4 * pool_->threads()));
     for_chunks(pool_.get(), contacts_.size(), 512, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        touched[chunk].clear();
-        for (std::size_t k = begin; k < end; ++k) islands_touched(contacts_[k], touched[chunk]);
+        ChunkList taken(touched[chunk]);
+        for (std::size_t k = begin; k < end; ++k) islands_touched(contacts_[k], *taken);
     });
     std::vector<std::uint32_t> islands;
     for (const std::vector<std::uint32_t>& some : touched) islands.insert(islands.end(), some.begin(), some.end());

@@ -1,6 +1,7 @@
 #include "soft_contacts.h"
 
 #include "ground_contact.h"
+#include "kept_memory.h"
 #include "triangle_queries.h"
 
 #include <algorithm>
@@ -323,9 +324,9 @@ void SoftContacts::find_soft_pairs(const std::vector<SoftBody>& bodies, const st
             const std::size_t chunks = (count + kChunk - 1) / kChunk;
             if (chunk_pairs_.size() < chunks) chunk_pairs_.resize(chunks);
             const auto run = [&](std::size_t k) {
-                chunk_pairs_[k].clear();
+                ChunkList taken(chunk_pairs_[k]);
                 const std::uint32_t end = std::min<std::uint32_t>(count, std::uint32_t((k + 1) * kChunk));
-                for (std::uint32_t p = std::uint32_t(k * kChunk); p < end; ++p) find_particle(bodies, a, b, p, whole[b], chunk_pairs_[k]);
+                for (std::uint32_t p = std::uint32_t(k * kChunk); p < end; ++p) find_particle(bodies, a, b, p, whole[b], *taken);
             };
             if (chunks == 1) run(0);
             else pool.run(chunks, run);
@@ -638,8 +639,8 @@ void SoftContacts::begin_rigid_substep(const std::vector<SoftBody>& bodies, std:
 // One span of find's groups (whole groups of one particle's pairs with one body): each group's
 // contacts into the span's own list, the group's choice kept or made anew (begin_substep).
 void SoftContacts::begin_span(const std::vector<SoftBody>& bodies, std::size_t span) {
-    std::vector<Active>& out = chunk_active_[span];
-    out.clear();
+    ChunkList taken(chunk_active_[span]);
+    std::vector<Active>& out = *taken;
     Near near[2], next;
     for (std::size_t g = spans_[span]; g < spans_[span + 1]; ++g) {
         const std::size_t begin = groups_[g], end = groups_[g + 1];

@@ -306,7 +306,7 @@ int World::rotation_substeps(double time) const {
     // The largest over the bodies, on every thread (a maximum is the same in any order).
     std::vector<double> most_needed(std::size_t(4 * pool_->threads()), 1.0);
     for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        double& needed = most_needed[chunk];
+        double needed = 1.0;  // (the chunk's own, written once: its neighbours' share a cache line)
         for (std::size_t b = begin; b < end; ++b) {
             const RigidBody& body = rigid_[b];
             if (body.fixed || asleep_[b]) continue;
@@ -316,6 +316,7 @@ int World::rotation_substeps(double time) const {
                 needed = std::max(needed, time * length(m.L) / body.principal_moments.x / kMaxStiffTurn);
             }
         }
+        most_needed[chunk] = needed;
     });
     const double needed = *std::max_element(most_needed.begin(), most_needed.end());
     const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(settings_.dt)));
@@ -369,10 +370,10 @@ void World::generate_contacts(double reach) {
     std::vector<std::vector<RigidContact>>& ground = rigid_contact_scratch_->ground;
     ground.resize(std::size_t(4 * pool_->threads()));
     const std::size_t chunks = for_chunks(pool_.get(), rigid_.size(), 128, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        ground[chunk].clear();
+        ChunkList taken(ground[chunk]);
         for (std::size_t b = begin; b < end; ++b) {
             if (asleep_[b]) continue;
-            rigid_ground_contacts(rigid_[b], std::uint32_t(b), motion_[b], settings_, reach, ground[chunk]);
+            rigid_ground_contacts(rigid_[b], std::uint32_t(b), motion_[b], settings_, reach, *taken);
         }
     });
     const std::size_t ground_end = place_chunks(contacts_, 0, ground, chunks, pool_.get());
@@ -458,11 +459,13 @@ int World::contact_intervals(double time) {
     });
     std::vector<double> fastest_in(std::size_t(4 * pool_->threads()), 0.0);
     for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        double fastest = 0.0;  // (the chunk's own, written once)
         for (std::size_t b = begin; b < end; ++b) {
             if (touching[b] && !rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) {
-                fastest_in[chunk] = std::max(fastest_in[chunk], length(motion_[b].omega));
+                fastest = std::max(fastest, length(motion_[b].omega));
             }
         }
+        fastest_in[chunk] = fastest;
     });
     const double fastest = *std::max_element(fastest_in.begin(), fastest_in.end());
     const double needed = std::ceil(time * fastest / kMaxContactTurn);
