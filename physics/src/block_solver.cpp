@@ -7,6 +7,15 @@ namespace softbody {
 
 namespace {
 
+// A symmetric positive definite matrix of at most 4 x 4 as L D L^T: L unit lower triangular
+// (its entries below the diagonal, row by row: L_rc at below(r, c)) and D's reciprocals.
+// Solving with it takes two triangular solves.
+struct BlockFactor {
+    static constexpr int below(int r, int c) { return r * (r - 1) / 2 + c; }
+    double L[6] = {};
+    double inv_d[4] = {};
+};
+
 // Factors the symmetric positive definite M x M matrix A as L D L^T (L unit lower triangular,
 // below its diagonal in `f`, and 1 / D): false when a pivot is not positive. M known when
 // compiled, so that the loops unroll.
@@ -87,6 +96,20 @@ constexpr unsigned kSetsBySize[5][16] = {
     {15, 14, 13, 11, 7, 12, 10, 9, 6, 5, 3, 8, 4, 2, 1, 0},
 };
 
+// A's inverse into `block` (its lower triangle) when A factors; false when it does not.
+template <int M>
+bool factor_and_invert(const double (&A)[4][4], BlockSolve& block) {
+    BlockFactor f;
+    if (!factor<M>(A, f)) return false;
+    for (int c = 0; c < M; ++c) {
+        double e[4] = {0.0, 0.0, 0.0, 0.0}, column[4];
+        e[c] = 1.0;
+        solve_factored<M>(f, e, column);
+        for (int r = c; r < M; ++r) block.inverse[BlockSolve::lower(r, c)] = column[r];
+    }
+    return true;
+}
+
 }  // namespace
 
 void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], BlockSolve& block) {
@@ -119,17 +142,17 @@ void prepare_block(int n, const double (&K)[4][4], const double (&q)[4][2], Bloc
         for (int x = 0; x < n; ++x) A4[x][x] *= 1.0 + 1e-9;  // three corners on a line
     }
     switch (n) {
-        case 1: block.factored = factor<1>(A4, block.factor); break;
-        case 2: block.factored = factor<2>(A4, block.factor); break;
-        case 3: block.factored = factor<3>(A4, block.factor); break;
-        case 4: block.factored = factor<4>(A4, block.factor); break;
+        case 1: block.factored = factor_and_invert<1>(A4, block); break;
+        case 2: block.factored = factor_and_invert<2>(A4, block); break;
+        case 3: block.factored = factor_and_invert<3>(A4, block); break;
+        case 4: block.factored = factor_and_invert<4>(A4, block); break;
         default: block.factored = false; break;
     }
 }
 
 namespace {
 
-// All N points pushing, through the factors prepared for the tick: x and true when that fits
+// All N points pushing, through the inverse prepared for the tick: x and true when that fits
 // (solve_block). N known when compiled, so that the loops unroll: the same operations in the
 // same order as for any n.
 template <int N>
@@ -141,7 +164,11 @@ bool solve_all(const BlockSolve& block, const double (&K)[4][4], const double (&
         for (int i = 0; i < N; ++i) c[i] -= along * block.z[i];
     }
     double y[4];
-    solve_factored<N>(block.factor, c, y);
+    for (int i = 0; i < N; ++i) {
+        double sum = 0.0;
+        for (int j = 0; j < N; ++j) sum += block.inverse[BlockSolve::lower(i, j)] * c[j];
+        y[i] = sum;
+    }
     // Rounding at the edge of the set: an impulse a hair below zero is zero. With four
     // corners the answer is the least-squares one: where the targets are not those of one
     // motion of the face (corners at different gaps closing as far as each may), some
@@ -168,7 +195,7 @@ bool solve_all(const BlockSolve& block, const double (&K)[4][4], const double (&
 // coupling; (K x)_i - b_i is point i's normal velocity above its target with impulses x, and it
 // must be zero where the point pushes (x_i > 0) and may be more where it does not (x_i = 0): a
 // linear complementarity problem, solved exactly by trying the sets of pushing points, all of
-// them first (through K's factors, prepared once a tick), then smaller sets, the first whose
+// them first (through K's inverse, prepared once a tick), then smaller sets, the first whose
 // impulses all push and whose other points do not close. Four corners on a plane leave K
 // singular (three would hold the face: statically indeterminate): of the answers, the one with
 // the least impulses is taken (b's part along the null direction z removed, and z filled in

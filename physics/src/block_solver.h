@@ -7,22 +7,17 @@
 
 namespace softbody {
 
-// A symmetric positive definite matrix of at most 4 x 4 as L D L^T: L unit lower triangular
-// (its entries below the diagonal, row by row: L_rc at below(r, c)) and D's reciprocals.
-// Solving with it takes two triangular solves.
-struct BlockFactor {
-    static constexpr int below(int r, int c) { return r * (r - 1) / 2 + c; }
-    double L[6] = {};
-    double inv_d[4] = {};
-};
-
 // What solves K for all points pushing at once, prepared once a tick (prepare_block): K's
-// factors, or, for four corners on a plane (K singular: three would hold the face), those of K
+// inverse, or, for four corners on a plane (K singular: three would hold the face), that of K
 // with the null direction z filled in, and z itself (`factored`: false when K could not be
 // factored, and then the sets are searched); and the smaller set of points that pushed the
 // last time all of them were solved for (0: none yet), tried first the next time.
+// The inverse is made from K's L D L^T factors, and kept (it is symmetric) as its lower
+// triangle, row by row: (r, c) at lower(r, c). A visit multiplies by it: four sums side by side,
+// where the factors' two triangular solves are a chain of steps each waiting for the last.
 struct BlockSolve {
-    BlockFactor factor;
+    static constexpr int lower(int r, int c) { return r >= c ? r * (r + 1) / 2 + c : c * (c + 1) / 2 + r; }
+    double inverse[10] = {};
     double z[4] = {};
     bool singular = false;
     bool factored = false;
