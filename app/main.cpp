@@ -17,6 +17,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "crash_report.h"
 #include "physics/error.h"
 
 namespace {
@@ -53,6 +54,7 @@ int dispatch(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     using namespace softbody::app;
+    install_crash_report();
     try {
         return dispatch(argc, argv);
     } catch (const UsageError& e) {
