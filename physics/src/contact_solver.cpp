@@ -232,6 +232,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     if (contacts.empty()) {
         manifolds_.clear();
         points_.clear();
+        body_order_.clear();
         return;
     }
 
@@ -414,8 +415,8 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // Each rigid body's inertia in world axes, Eq. 32 with q made unit first (between
     // renormalisations |q| drifts under explicit Euler and RK4), so that I and inv_I are each
     // other's inverse: the impulses' L (I dw) is then exactly r x j.
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        Body& s = bodies_[i + 1];
+    each_body([&](std::size_t b) {
+        Body& s = bodies_[b];
         if (s.kind != Body::Kind::Rigid) return;
         const RigidBody& body = world.bodies[s.index];
         const Mat3 R = rotation_of(s.q0);
@@ -564,6 +565,11 @@ void ContactSolver::parallel(std::size_t count, std::size_t grain, const F& f) {
     });
 }
 
+template <class F>
+void ContactSolver::each_body(const F& f) {
+    parallel(body_order_.size(), kBodyGrain, [&](std::size_t k) { f(std::size_t(body_order_[k])); });
+}
+
 // Gauss-Seidel on every core, in the order a single thread would take: the moving bodies are cut
 // into kBlocks slabs along the axis they spread most on (kBlocks is fixed: no machine changes
 // it), each holding the same number of bodies. A manifold whose moving bodies are all in one
@@ -611,14 +617,25 @@ void ContactSolver::each_in_slabs(const F& f) {
         if (low % 2 == 0) return true;
         return done(c - 1) && (low + 2 >= kBlocks || done(c + 1));
     };
-    // Every thread takes the first free group that is ready, until none is free. One that finds
-    // none ready waits for a group another is running (whatever it waits for is taken: the
-    // order lists each group after those it waits for).
-    pool_->run(std::size_t(pool_->threads()), [&](std::size_t) {
+    // Every thread takes the first free group that is ready, until none is free: first among its
+    // own (thread t of T: the slabs t kBlocks / T up to (t + 1) kBlocks / T and the boundaries
+    // above them, whose bodies it holds in its core's cache from the last pass), then any. One
+    // that finds none ready waits for a group another is running (whatever it waits for is
+    // taken: the order lists each group after those it waits for).
+    const std::size_t threads_n = std::size_t(pool_->threads());
+    pool_->run(threads_n, [&](std::size_t) {
+        const std::size_t t = std::size_t(ThreadPool::slot()) % threads_n;
+        const std::size_t home_lo = kBlocks * t / threads_n, home_hi = kBlocks * (t + 1) / threads_n;
+        const auto home = [&](std::size_t c) {
+            const std::size_t slab = c < kBlocks ? c : c - kBlocks;
+            return slab >= home_lo && slab < home_hi;
+        };
         for (;;) {
             bool free = false, took = false;
+            for (int round = 0; round < 2 && !took; ++round)
             for (const std::uint8_t c : order) {
                 if (state[c].load(std::memory_order_acquire) != 0) continue;
+                if (round == 0 && !home(c)) continue;
                 free = true;
                 std::uint8_t expected = 0;
                 if (ready(c) && state[c].compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) {
@@ -679,6 +696,11 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
     for (std::size_t c = 0; c < kBlocks; ++c) {
         for (std::ptrdiff_t r = edge(c); r < edge(c + 1); ++r) slab[by_place[std::size_t(r)].second] = std::uint32_t(c);
     }
+    // The bodies slab after slab (each_body), each slab's in their order.
+    resize_with_room(body_order_, moving);
+    for (std::size_t c = 0; c < kBlocks; ++c) {
+        for (std::ptrdiff_t r = edge(c); r < edge(c + 1); ++r) body_order_[std::size_t(r)] = by_place[std::size_t(r)].second;
+    }
     // Each manifold to its slab (c), its boundary (kBlocks + the lower slab) or across further
     // (the last group); then laid out group after group, each in order.
     std::vector<std::uint32_t> &group = buffers_.group, &count = buffers_.count;
@@ -709,8 +731,8 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
 // was then (refresh) and L after the free step's torques.
 void ContactSolver::load(const ContactWorld& world) {
     pool_ = world.pool;
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        Body& s = bodies_[i + 1];
+    each_body([&](std::size_t b) {
+        Body& s = bodies_[b];
         if (s.kind == Body::Kind::Rigid) {
             const double* y = &world.state[s.index * rigid::kStateSize];
             const double* y0 = &world.step_start[s.index * rigid::kStateSize];
@@ -760,8 +782,8 @@ void ContactSolver::load(const ContactWorld& world) {
 // again more often: World::contact_intervals.) The body's velocities keep its momenta: w is
 // found again from L = L_free + I (w - w_free), and w_free with it.
 void ContactSolver::refresh(const ContactWorld& world) {
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        Body& s = bodies_[i + 1];
+    each_body([&](std::size_t b) {
+        Body& s = bodies_[b];
         s.refreshed = false;
         if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) return;
         const RigidBody& body = world.bodies[s.index];
@@ -1140,8 +1162,8 @@ void ContactSolver::substep(const ContactWorld& world) {
     // under symplectic Euler and Verlet the free turn again from where the substep began, with
     // the angular momentum the contacts left (free_turn keeps its energy); under the others,
     // turned on by h times the change.
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        Body& s = bodies_[i + 1];
+    each_body([&](std::size_t b) {
+        Body& s = bodies_[b];
         const Vec3d dx = (s.v - s.v_free) * h;
         if (s.kind == Body::Kind::Rigid) {
             double* y = &world.state[s.index * rigid::kStateSize];
@@ -1220,8 +1242,8 @@ void ContactSolver::substep(const ContactWorld& world) {
     // The energy of this substep's contacts, island by island: what restitution may give back.
     // Each body's on the threads, the sums in the bodies' order.
     body_work_.resize(bodies_.size());
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        body_work_[i + 1] = {work(bodies_[i + 1], false), work(bodies_[i + 1], true)};
+    each_body([&](std::size_t b) {
+        body_work_[b] = {work(bodies_[b], false), work(bodies_[b], true)};
     });
     for (std::size_t b = 1; b < bodies_.size(); ++b) {
         absorbed_[island_of_[b]] -= body_work_[b].first;
@@ -1422,8 +1444,8 @@ void ContactSolver::restitute(bool after_positions) {
 // The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's
 // L += r x j, as J_world dw), a particle's v, and Verlet's step with it.
 void ContactSolver::store(const ContactWorld& world) {
-    parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-        const Body& s = bodies_[i + 1];
+    each_body([&](std::size_t b) {
+        const Body& s = bodies_[b];
         if (s.kind == Body::Kind::Rigid) {
             double* y = &world.state[s.index * rigid::kStateSize];
             const Vec3d dP = (s.v - s.v_free) / s.inv_mass, dL = s.I * (s.w - s.w_free);
@@ -1468,8 +1490,8 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
     });
     const bool due = any_due.load();
     if (due) {
-        parallel(bodies_.size() - 1, kBodyGrain, [&](std::size_t i) {
-            Body& s = bodies_[i + 1];
+        each_body([&](std::size_t b) {
+            Body& s = bodies_[b];
             if (s.kind == Body::Kind::Rigid) {
                 const double* y = &world.state[s.index * rigid::kStateSize];
                 s.L_free = Vec3d{y[rigid::L], y[rigid::L + 1], y[rigid::L + 2]};

@@ -12,6 +12,8 @@ void cpu_relax() {
 
 using Clock = std::chrono::steady_clock;
 
+thread_local int this_slot = 0;
+
 // Longer than 64 polls and a yield take on a core of one's own, far shorter than the time slice
 // another program gets when it shares the core (milliseconds). Under a hypervisor the polls and
 // the yield take a few microseconds but now and then 50 to 300: with 50 here, a worker took those
@@ -65,7 +67,12 @@ int hardware_threads() {
 }
 
 ThreadPool::ThreadPool(int threads) {
-    for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { worker_loop(); });
+    for (int t = 1; t < threads; ++t) {
+        workers_.emplace_back([this, t] {
+            this_slot = t;
+            worker_loop();
+        });
+    }
 }
 
 ThreadPool::~ThreadPool() {
@@ -76,6 +83,8 @@ ThreadPool::~ThreadPool() {
     wake_.notify_all();
     for (auto& worker : workers_) worker.join();
 }
+
+int ThreadPool::slot() { return this_slot; }
 
 bool ThreadPool::claim(std::uint32_t& index) {
     std::uint64_t word = batch_.load(std::memory_order_acquire);

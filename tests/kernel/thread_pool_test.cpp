@@ -11,6 +11,9 @@
 
 #include <atomic>
 #include <cstddef>
+#include <map>
+#include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -69,6 +72,39 @@ TEST(ThreadPool, ChunksCoverTheRangeInOrderAtAnyThreadCount) {
                 next = ranges[c].second;
             }
             EXPECT_EQ(next, count);
+        }
+    }
+}
+
+// Each thread of a pool has a slot of its own (the caller 0, the workers 1 on), the same all its
+// life, and for_chunks still runs every chunk once when each thread takes its own share first.
+TEST(ThreadPool, EachThreadKeepsItsSlotAndEveryChunkRunsOnce) {
+    EXPECT_EQ(ThreadPool::slot(), 0);
+    for (int threads : {2, 3, 20}) {
+        ThreadPool pool(threads);
+        std::mutex mutex;
+        std::map<std::thread::id, int> slot_of;
+        for (int round = 0; round < 300; ++round) {
+            const std::size_t count = 100 + std::size_t(round);
+            std::vector<std::atomic<int>> runs(count);
+            for_chunks(&pool, count, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) runs[i].fetch_add(1);
+                const int slot = ThreadPool::slot();
+                std::lock_guard lock(mutex);
+                const auto [at, added] = slot_of.emplace(std::this_thread::get_id(), slot);
+                EXPECT_EQ(at->second, slot) << "a thread changed its slot";
+            });
+            for (std::size_t i = 0; i < count; ++i) ASSERT_EQ(runs[i].load(), 1) << threads << " threads, item " << i << " of " << count;
+        }
+        std::set<int> slots;
+        for (const auto& [thread, slot] : slot_of) {
+            EXPECT_GE(slot, 0);
+            EXPECT_LT(slot, threads);
+            EXPECT_TRUE(slots.insert(slot).second) << "two threads share slot " << slot;
+        }
+        const auto caller = slot_of.find(std::this_thread::get_id());
+        if (caller != slot_of.end()) {
+            EXPECT_EQ(caller->second, 0);
         }
     }
 }

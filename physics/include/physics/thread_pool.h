@@ -6,7 +6,9 @@
 // so when the workers are asleep, or the system has not scheduled them (other programs busy on the
 // cores), the caller simply runs the whole batch itself, at the speed of one thread. At the end it
 // waits only for the tasks that a worker has claimed and is running. A worker that wakes late finds
-// every task taken and goes back to waiting.
+// every task taken and goes back to waiting. for_chunks goes one step further: each thread (its
+// slot) takes its own share of a loop's chunks first, the same share in every loop over the same
+// items, and then helps with what is left of the others'.
 //
 // Waking a sleeping thread costs tens of microseconds (a futex wake, more under a hypervisor), as
 // long as a whole force pass on a few hundred particles. So a worker that has run out of tasks
@@ -45,6 +47,10 @@ public:
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     int threads() const { return static_cast<int>(workers_.size()) + 1; }
+
+    // Which thread of its pool this is: 1 up to threads() - 1 on a worker, 0 on any other thread
+    // (the caller).
+    static int slot();
 
     // Calls task(0) ... task(count - 1), each exactly once, on the caller and whichever workers
     // turn up in time; returns when all are done. Tasks must not call run() themselves.
@@ -122,7 +128,28 @@ std::size_t for_chunks(ThreadPool* pool, std::size_t count, std::size_t grain, c
         f(std::size_t{0}, std::size_t{0}, count);
         return 1;
     }
-    pool->run(chunks, [&](std::size_t c) { f(c, count * c / chunks, count * (c + 1) / chunks); });
+    // Each thread takes its own share of the chunks first (thread t of T: chunks t chunks / T up to
+    // (t + 1) chunks / T), then what is left of the others'. A loop over the same items in the next
+    // phase gives each thread the same items again: they are still in its core's cache.
+    struct alignas(64) Share {
+        std::atomic<std::size_t> next{0};
+        std::size_t end = 0;
+    };
+    std::array<Share, 16> shares;
+    const std::size_t parts = std::min(threads, shares.size());
+    for (std::size_t t = 0; t < parts; ++t) {
+        shares[t].next.store(chunks * t / parts, std::memory_order_relaxed);
+        shares[t].end = chunks * (t + 1) / parts;
+    }
+    const auto take = [&](Share& share) {
+        for (std::size_t c = share.next.fetch_add(1); c < share.end; c = share.next.fetch_add(1)) {
+            f(c, count * c / chunks, count * (c + 1) / chunks);
+        }
+    };
+    pool->run(parts, [&](std::size_t) {
+        const std::size_t home = std::size_t(ThreadPool::slot()) % parts;
+        for (std::size_t k = 0; k < parts; ++k) take(shares[(home + k) % parts]);
+    });
     return chunks;
 }
 
