@@ -731,6 +731,8 @@ void ContactSolver::slabs(std::span<const FoundManifold> found) {
 // was then (refresh) and L after the free step's torques.
 void ContactSolver::load(const ContactWorld& world) {
     pool_ = world.pool;
+    // Each body's inertia found again where it needs it (refresh), in the same sweep.
+    std::atomic<bool> any_refreshed{false};
     each_body([&](std::size_t b) {
         Body& s = bodies_[b];
         if (s.kind == Body::Kind::Rigid) {
@@ -768,8 +770,9 @@ void ContactSolver::load(const ContactWorld& world) {
         }
         s.v = s.v_free;
         s.w = s.w_free;
+        if (refresh(world, s)) any_refreshed.store(true, std::memory_order_relaxed);
     });
-    refresh(world);
+    if (any_refreshed.load()) refresh_manifolds();
 }
 
 // A rigid body's inverse inertia in world axes, and its contacts' anchors, are those of where
@@ -781,40 +784,38 @@ void ContactSolver::load(const ContactWorld& world) {
 // an edge) or resting never does. (How far the anchors turn is bounded by finding the contacts
 // again more often: World::contact_intervals.) The body's velocities keep its momenta: w is
 // found again from L = L_free + I (w - w_free), and w_free with it.
-void ContactSolver::refresh(const ContactWorld& world) {
-    each_body([&](std::size_t b) {
-        Body& s = bodies_[b];
-        s.refreshed = false;
-        if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) return;
-        const RigidBody& body = world.bodies[s.index];
-        const Vec3d L = s.L_free + s.I * (s.w - s.w_free);
-        // First a bound, without the new inertia. J^-1's isotropic part (1 / I_max) turns into
-        // itself, so the change R J^-1 R^T - R0 J^-1 R0^T is at most 2 |R - R0| (1 / I_min -
-        // 1 / I_max), and |R - R0| = 2 sin(theta/2) for the turn theta between them; plus the
-        // rounding of the products below. Where even twice that keeps the error under
-        // kStaleSpeed, so would the test below: a ball or a cube (isotropic), a body resting or
-        // turning slowly, skips two matrix products.
-        const Vec3d& moments = body.principal_moments;
-        if (moments.x > 0.0) {
-            const Quat turn = s.q_now * s.q_ref.conjugate();
-            const double sin_half = std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z) / (s.q_now.norm() * s.q_ref.norm());
-            const double spread = 1.0 / moments.x - 1.0 / moments.z, rounding = 1e-12 / moments.x;
-            if ((8.0 * sin_half * spread + rounding) * length(L) * body.bounding_radius < kStaleSpeed) return;
-        }
-        const Mat3 R = rotation_of(s.q_now);
-        const Mat3 inv_I = R * body.J_body_inv * R.transposed();
-        if (!(length((inv_I - s.inv_I) * L) * body.bounding_radius > kStaleSpeed)) return;
-        s.inv_I = inv_I;
-        s.I = R * body.J_body * R.transposed();
-        s.q_ref = s.q_now;
-        s.w = inv_I * L;
-        s.w_free = inv_I * s.L_free;
-        s.w_start = inv_I * s.L_start;
-        s.refreshed = true;
-    });
-    bool refreshed = false;
-    for (std::size_t b = 1; b < bodies_.size() && !refreshed; ++b) refreshed = bodies_[b].refreshed;
-    if (!refreshed) return;
+bool ContactSolver::refresh(const ContactWorld& world, Body& s) {
+    s.refreshed = false;
+    if (s.kind != Body::Kind::Rigid || s.q_now == s.q_ref) return false;
+    const RigidBody& body = world.bodies[s.index];
+    const Vec3d L = s.L_free + s.I * (s.w - s.w_free);
+    // First a bound, without the new inertia. J^-1's isotropic part (1 / I_max) turns into
+    // itself, so the change R J^-1 R^T - R0 J^-1 R0^T is at most 2 |R - R0| (1 / I_min -
+    // 1 / I_max), and |R - R0| = 2 sin(theta/2) for the turn theta between them; plus the
+    // rounding of the products below. Where even twice that keeps the error under
+    // kStaleSpeed, so would the test below: a ball or a cube (isotropic), a body resting or
+    // turning slowly, skips two matrix products.
+    const Vec3d& moments = body.principal_moments;
+    if (moments.x > 0.0) {
+        const Quat turn = s.q_now * s.q_ref.conjugate();
+        const double sin_half = std::sqrt(turn.x * turn.x + turn.y * turn.y + turn.z * turn.z) / (s.q_now.norm() * s.q_ref.norm());
+        const double spread = 1.0 / moments.x - 1.0 / moments.z, rounding = 1e-12 / moments.x;
+        if ((8.0 * sin_half * spread + rounding) * length(L) * body.bounding_radius < kStaleSpeed) return false;
+    }
+    const Mat3 R = rotation_of(s.q_now);
+    const Mat3 inv_I = R * body.J_body_inv * R.transposed();
+    if (!(length((inv_I - s.inv_I) * L) * body.bounding_radius > kStaleSpeed)) return false;
+    s.inv_I = inv_I;
+    s.I = R * body.J_body * R.transposed();
+    s.q_ref = s.q_now;
+    s.w = inv_I * L;
+    s.w_free = inv_I * s.L_free;
+    s.w_start = inv_I * s.L_start;
+    s.refreshed = true;
+    return true;
+}
+
+void ContactSolver::refresh_manifolds() {
     // Each point of a turned body's manifold: its two anchors where they are (each body's anchor
     // from the start turned with it), and the point between them, where both impulses act (so
     // that they keep the angular momentum about any point exactly).
@@ -1126,34 +1127,36 @@ void ContactSolver::substep(const ContactWorld& world) {
     // Which points bounce before the positions move: those touching as the substep begins and
     // coming in faster than a resting contact does. The bounce leaves at -e times that speed,
     // plus what the substep's forces add to it (as the free step would have).
+    // Then the warm start: the impulses that held the contacts in the last substep, again. Both in
+    // one sweep, a manifold at a time: the first reads the velocities the integrator left
+    // (v_free, v_start) and writes the manifold's own points, the second changes only v and w, so
+    // it is the same as two sweeps one after the other, with one pass through the manifolds less.
     std::atomic<bool> any_bouncing{false};
-    parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
-        Manifold& m = manifolds_[i];
+    each_in_slabs([&](Manifold& m) {
         separate(m, false);
         // Only a manifold that was bouncing has points with a bounce to clear.
         if (m.bouncing) {
             for (std::uint32_t k = m.first; k < m.first + m.count; ++k) points_[k].bounce = points_[k].bounce_impulse = 0.0;
         }
         m.bouncing = false;
-        if (m.e <= 0.0) return;  // never bounces: its bounces stay 0
-        const Body &A = bodies_[m.a], &B = bodies_[m.b];
-        for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
-            const PassPoint& q = pass_[k];
-            if (q.s > settings_.touching) continue;
-            const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
-            if (-vn_start <= settings_.bounce_speed) continue;
-            const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b);
-            Point& p = points_[k];
-            p.bounce = -vn_start;
-            p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
-            m.bouncing = true;
-            any_bouncing.store(true, std::memory_order_relaxed);
+        if (m.e > 0.0) {  // else it never bounces: its bounces stay 0
+            const Body &A = bodies_[m.a], &B = bodies_[m.b];
+            for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
+                const PassPoint& q = pass_[k];
+                if (q.s > settings_.touching) continue;
+                const double vn_start = dot(A.v_start - B.v_start, m.n) + dot(A.w_start, q.c_a) - dot(B.w_start, q.c_b);
+                if (-vn_start <= settings_.bounce_speed) continue;
+                const double vn_free = dot(A.v_free - B.v_free, m.n) + dot(A.w_free, q.c_a) - dot(B.w_free, q.c_b);
+                Point& p = points_[k];
+                p.bounce = -vn_start;
+                p.bounce_target = -m.e * vn_start + (vn_free - vn_start);
+                m.bouncing = true;
+                any_bouncing.store(true, std::memory_order_relaxed);
+            }
         }
+        warm_start(m);
     });
     const bool bouncing = any_bouncing.load();
-
-    // Warm start: the impulses that held the contacts in the last substep, again.
-    each_in_slabs([&](Manifold& m) { warm_start(m); });
 
     solve(true);
     if (bouncing) restitute(false);
@@ -1161,7 +1164,9 @@ void ContactSolver::substep(const ContactWorld& world) {
     // The positions: the free step's, moved on by h times what the contacts changed. The turn:
     // under symplectic Euler and Verlet the free turn again from where the substep began, with
     // the angular momentum the contacts left (free_turn keeps its energy); under the others,
-    // turned on by h times the change.
+    // turned on by h times the change. Each body's inertia found again where it needs it
+    // (refresh), in the same sweep.
+    std::atomic<bool> any_refreshed{false};
     each_body([&](std::size_t b) {
         Body& s = bodies_[b];
         const Vec3d dx = (s.v - s.v_free) * h;
@@ -1193,8 +1198,9 @@ void ContactSolver::substep(const ContactWorld& world) {
             s.x = Vec3d{p.x[s.index], p.y[s.index], p.z[s.index]};
             s.dp = s.x - s.x0;
         }
+        if (refresh(world, s)) any_refreshed.store(true, std::memory_order_relaxed);
     });
-    refresh(world);
+    if (any_refreshed.load()) refresh_manifolds();
     // The relax; its first pass works out each manifold's separations where the positions left
     // its points just before, and its last adds each manifold's impulses to the tick's just
     // after, while its points are at hand (separate(), totals()).

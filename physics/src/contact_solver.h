@@ -247,7 +247,10 @@ private:
     using Manifold = SolverManifold;
     void setup(Manifold& m);
     void load(const ContactWorld& world);
-    void refresh(const ContactWorld& world);
+    // A rigid body's inertia and anchors found again where it has turned far enough (true: they
+    // were), then its manifolds' points and couplings, once every body has been looked at.
+    bool refresh(const ContactWorld& world, Body& s);
+    void refresh_manifolds();
     void store(const ContactWorld& world);
     void separate(const SolverManifold& m, bool moved);
     void separations(bool moved);
