@@ -107,6 +107,8 @@ constexpr std::size_t kBlocks = 8;
 // The groups of manifolds slabs() makes: each slab's, each boundary's between two neighbouring
 // slabs (kBlocks - 1), and those across slabs further apart.
 constexpr std::size_t kGroups = 2 * kBlocks;
+// The most passes over the slabs handed to the threads at once (each_in_slabs).
+constexpr int kMostChained = 4;
 
 // Whether a length whose square is size2 is certainly no more than limit >= 0, without its square
 // root: true only where sqrt(size2) <= limit however both round (a margin of 1e-12 beside the
@@ -584,14 +586,19 @@ void ContactSolver::each_body(const F& f) {
 // with its part of a phase starts on the next one's instead of waiting for the other thread
 // (with seven boundaries on two threads, one waited a third of the second phase).
 template <class F>
-void ContactSolver::each_in_slabs(const F& f) {
+void ContactSolver::each_in_slabs(int passes, const F& f) {
     if (slab_start_.size() < kGroups + 1) return;
-    const auto run_group = [&](std::size_t c) {
-        for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[i]);
+    for (int first = 0; first < passes; first += kMostChained) chain_in_slabs(first, std::min(passes - first, kMostChained), f);
+}
+
+template <class F>
+void ContactSolver::chain_in_slabs(int first, int passes, const F& f) {
+    const auto run_group = [&](int pass, std::size_t c) {
+        for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[i], first + pass);
     };
     // The groups before the last, in the order one thread takes them: the slabs, the boundaries
     // from an even slab, those from an odd one.
-    constexpr std::size_t kOrdered = kGroups - 1;
+    constexpr std::size_t kOrdered = kGroups - 1, kAcross = kGroups - 1;
     static constexpr std::array<std::uint8_t, kOrdered> order = [] {
         std::array<std::uint8_t, kOrdered> o{};
         std::size_t k = 0;
@@ -602,54 +609,75 @@ void ContactSolver::each_in_slabs(const F& f) {
     }();
     const bool threads = pool_ && pool_->threads() > 1 && manifolds_.size() >= kManifoldGrain * kBlocks;
     if (!threads) {
-        for (const std::uint8_t c : order) run_group(c);
-        run_group(kGroups - 1);
+        for (int pass = 0; pass < passes; ++pass) {
+            for (const std::uint8_t c : order) run_group(pass, c);
+            run_group(pass, kAcross);
+        }
         return;
     }
-    // Each group free (0), taken (1) or done (2).
-    std::array<std::atomic<std::uint8_t>, kOrdered> state;
+    // Each group of each pass free (0), taken (1) or done (2).
+    std::array<std::atomic<std::uint8_t>, kGroups * kMostChained> state;
     for (std::atomic<std::uint8_t>& g : state) g.store(0, std::memory_order_relaxed);
-    const auto done = [&](std::size_t c) { return state[c].load(std::memory_order_acquire) == 2; };
-    const auto ready = [&](std::size_t c) {
-        if (c < kBlocks) return true;
+    const auto at = [](int pass, std::size_t c) { return std::size_t(pass) * kGroups + c; };
+    const auto done = [&](int pass, std::size_t c) { return state[at(pass, c)].load(std::memory_order_acquire) == 2; };
+    const bool no_across = slab_start_[kAcross] == slab_start_[kAcross + 1];
+    const auto ready = [&](int pass, std::size_t c) {
+        if (c == kAcross) {
+            for (const std::uint8_t g : order) {
+                if (!done(pass, g)) return false;
+            }
+            return true;
+        }
+        if (c < kBlocks) {
+            // After every group of the pass before that has a body in this slab: its own, the
+            // boundaries on either side, and those across (which may have one anywhere).
+            if (pass == 0) return true;
+            return done(pass - 1, c) && (c == 0 || done(pass - 1, kBlocks + c - 1)) && (c + 1 == kBlocks || done(pass - 1, kBlocks + c)) &&
+                   (no_across || done(pass - 1, kAcross));
+        }
         const std::size_t low = c - kBlocks;  // the boundary low|low + 1
-        if (!done(low) || !done(low + 1)) return false;
+        if (!done(pass, low) || !done(pass, low + 1)) return false;
         if (low % 2 == 0) return true;
-        return done(c - 1) && (low + 2 >= kBlocks || done(c + 1));
+        return done(pass, c - 1) && (low + 2 >= kBlocks || done(pass, c + 1));
     };
-    // Every thread takes the first free group that is ready, until none is free: first among its
-    // own (thread t of T: the slabs t kBlocks / T up to (t + 1) kBlocks / T and the boundaries
-    // above them, whose bodies it holds in its core's cache from the last pass), then any. One
-    // that finds none ready waits for a group another is running (whatever it waits for is
-    // taken: the order lists each group after those it waits for).
+    // Every thread takes the first free group that is ready, pass by pass, until none is free:
+    // first among its own (thread t of T: the slabs t kBlocks / T up to (t + 1) kBlocks / T and
+    // the boundaries above them, whose bodies it holds in its core's cache from the last pass),
+    // then any. One that finds none ready waits for a group another is running (whatever it
+    // waits for is taken: the order lists each group after those it waits for).
     const std::size_t threads_n = std::size_t(pool_->threads());
     pool_->run(threads_n, [&](std::size_t) {
         const std::size_t t = std::size_t(ThreadPool::slot()) % threads_n;
         const std::size_t home_lo = kBlocks * t / threads_n, home_hi = kBlocks * (t + 1) / threads_n;
         const auto home = [&](std::size_t c) {
+            if (c == kAcross) return false;
             const std::size_t slab = c < kBlocks ? c : c - kBlocks;
             return slab >= home_lo && slab < home_hi;
         };
+        const auto try_take = [&](int pass, std::size_t c, int round, bool& free) {
+            if (state[at(pass, c)].load(std::memory_order_acquire) != 0) return false;
+            if (round == 0 && !home(c)) return false;
+            free = true;
+            std::uint8_t expected = 0;
+            if (!ready(pass, c) || !state[at(pass, c)].compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) return false;
+            run_group(pass, c);
+            state[at(pass, c)].store(2, std::memory_order_release);
+            return true;
+        };
         for (;;) {
             bool free = false, took = false;
-            for (int round = 0; round < 2 && !took; ++round)
-            for (const std::uint8_t c : order) {
-                if (state[c].load(std::memory_order_acquire) != 0) continue;
-                if (round == 0 && !home(c)) continue;
-                free = true;
-                std::uint8_t expected = 0;
-                if (ready(c) && state[c].compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) {
-                    run_group(c);
-                    state[c].store(2, std::memory_order_release);
-                    took = true;
-                    break;
+            for (int round = 0; round < 2 && !took; ++round) {
+                for (int pass = 0; pass < passes && !took; ++pass) {
+                    for (const std::uint8_t c : order) {
+                        if ((took = try_take(pass, c, round, free))) break;
+                    }
+                    if (!took) took = try_take(pass, kAcross, round, free);
                 }
             }
             if (!free) return;
             if (!took) std::this_thread::yield();
         }
     });
-    run_group(kGroups - 1);
 }
 
 // Why slabs and not a colouring (a graph colouring, tried first): a colour takes
@@ -933,12 +961,8 @@ void ContactSolver::warm_start(Manifold& m) {
     }
 }
 
-// One pass over every manifold: its normal impulses together toward each point's target, then
+// One manifold's visit in a pass: its normal impulses together toward each point's target, then
 // friction at its centre. `bias`: push overlaps apart (the solve), or not (the relax).
-void ContactSolver::solve(bool bias) {
-    each_in_slabs([&](Manifold& m) { solve_manifold(m, bias); });
-}
-
 void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     const double inv_h = 1.0 / h_;
     if (!bias && m.bouncing) return;  // it leaves: nothing to relax
@@ -1131,8 +1155,14 @@ void ContactSolver::substep(const ContactWorld& world) {
     // one sweep, a manifold at a time: the first reads the velocities the integrator left
     // (v_free, v_start) and writes the manifold's own points, the second changes only v and w, so
     // it is the same as two sweeps one after the other, with one pass through the manifolds less.
+    // And in the sweep after, the solve (each manifold once every manifold it shares a body with
+    // has been warm-started).
     std::atomic<bool> any_bouncing{false};
-    each_in_slabs([&](Manifold& m) {
+    each_in_slabs(2, [&](Manifold& m, int pass) {
+        if (pass == 1) {
+            solve_manifold(m, true);
+            return;
+        }
         separate(m, false);
         // Only a manifold that was bouncing has points with a bounce to clear.
         if (m.bouncing) {
@@ -1157,8 +1187,6 @@ void ContactSolver::substep(const ContactWorld& world) {
         warm_start(m);
     });
     const bool bouncing = any_bouncing.load();
-
-    solve(true);
     if (bouncing) restitute(false);
 
     // The positions: the free step's, moved on by h times what the contacts changed. The turn:
@@ -1204,14 +1232,11 @@ void ContactSolver::substep(const ContactWorld& world) {
     // The relax; its first pass works out each manifold's separations where the positions left
     // its points just before, and its last adds each manifold's impulses to the tick's just
     // after, while its points are at hand (separate(), totals()).
-    for (int pass = 0; pass < settings_.relax_passes; ++pass) {
-        const bool first = pass == 0, last = pass + 1 == settings_.relax_passes;
-        each_in_slabs([&](Manifold& m) {
-            if (first) separate(m, true);
-            solve_manifold(m, false);
-            if (last) add_to_totals(m);
-        });
-    }
+    each_in_slabs(settings_.relax_passes, [&](Manifold& m, int pass) {
+        if (pass == 0) separate(m, true);
+        solve_manifold(m, false);
+        if (pass + 1 == settings_.relax_passes) add_to_totals(m);
+    });
     if (settings_.relax_passes == 0) {
         separations(true);
         totals();

@@ -254,7 +254,6 @@ private:
     void store(const ContactWorld& world);
     void separate(const SolverManifold& m, bool moved);
     void separations(bool moved);
-    void solve(bool bias);
     void restitute(bool after_positions);
     void forget_bounced();
     void forget_if_bounced(SolverManifold& m);
@@ -304,9 +303,13 @@ private:
     // chunks of them go to the same threads, so a body's lines stay in one core's cache.
     template <class F>
     void each_body(const F& f);
-    // f(manifold) for every manifold: the slabs' at once, each slab's in order, then those across.
+    // f(manifold, pass) for every manifold, `passes` times: in each pass the slabs' at once, each
+    // slab's in order, then those across. A group of the next pass may start as soon as every
+    // group of this one that shares a slab with it is done (no wait for the whole pass).
     template <class F>
-    void each_in_slabs(const F& f);
+    void each_in_slabs(int passes, const F& f);
+    template <class F>
+    void chain_in_slabs(int first, int passes, const F& f);
 
     ContactSettings settings_;
     double h_ = 0.0;
