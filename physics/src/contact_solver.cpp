@@ -228,6 +228,7 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
                             const ContactWorld& world, const ContactSettings& settings) {
     settings_ = settings;
     h_ = settings.dt / double(settings.substeps);
+    substeps_done_ = 0;
     energy_ = {};
     bodies_.assign(1, Body{});
     rigid_index_.assign(world.bodies.size(), 0);
@@ -1232,12 +1233,17 @@ void ContactSolver::substep(const ContactWorld& world) {
     // The relax; its first pass works out each manifold's separations where the positions left
     // its points just before, and its last adds each manifold's impulses to the tick's just
     // after, while its points are at hand (separate(), totals()).
-    each_in_slabs(settings_.relax_passes, [&](Manifold& m, int pass) {
+    // Fewer passes before the interval's last substep: each next substep begins with a solve of
+    // every manifold, which takes up what these left; the last leaves the bodies as the tick
+    // ends, and relaxes fully.
+    const bool last = ++substeps_done_ >= settings_.substeps;
+    const int relax_passes = last ? settings_.relax_passes : std::min(settings_.relax_passes, settings_.early_relax_passes);
+    each_in_slabs(relax_passes, [&](Manifold& m, int pass) {
         if (pass == 0) separate(m, true);
         solve_manifold(m, false);
-        if (pass + 1 == settings_.relax_passes) add_to_totals(m);
+        if (pass + 1 == relax_passes) add_to_totals(m);
     });
-    if (settings_.relax_passes == 0) {
+    if (relax_passes == 0) {
         separations(true);
         totals();
     }

@@ -79,7 +79,8 @@ struct ContactSettings {
     double stack_depth = 5e-4;    // m: a loaded contact is made stiffer so that it stands at most this compressed
     double push_speed = 1.0;      // the fastest an overlap is pushed apart, m/s
     double touching = 5e-4;       // m: a point this close at a substep's start touches (it may bounce there)
-    int relax_passes = 3;         // over every manifold after the positions moved
+    int relax_passes = 3;         // over every manifold after the positions moved, in an interval's last substep
+    int early_relax_passes = 2;   // the same in the substeps before it (the next substep's solve takes up the rest)
     bool exact_turn = false;      // symplectic Euler, Verlet: positions' turn by free_turn (see substep)
     bool particle_chord = false;  // RK4, explicit Euler: a particle's step is not h times its end velocity (see substep)
     int restitution_passes = 4;   // over the manifolds that bounce in a substep
@@ -313,6 +314,7 @@ private:
 
     ContactSettings settings_;
     double h_ = 0.0;
+    int substeps_done_ = 0;  // of the interval prepared (the last relaxes more: ContactSettings)
     std::vector<Body> bodies_;              // [0]: the static world
     std::vector<Manifold> manifolds_;
     std::vector<Point> points_;
