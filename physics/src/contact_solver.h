@@ -150,6 +150,7 @@ struct SolverBody {
     bool round = false;        // a sphere: the same surface however it turns (its anchors do not turn with it)
     Vec3d dp;                  // the centre's move from where the contacts were found to the substep's start
     Mat3 turn;                 // the turn of its anchors over the same (none for a round body)
+    bool same_start = true;    // the substep began where the last one's positions left it (separate)
     Vec3d dp_free;             // the same to the free step's end
     Vec3d chord;               // a particle's step over h (its chord velocity) less its end velocity
     Mat3 turn_free;
