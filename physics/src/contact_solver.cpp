@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <thread>
@@ -126,9 +126,8 @@ bool within_limit(double size2, double limit) { return limit > 1e-150 && size2 <
 
 // The same three numbers to the bit (== takes -0 for 0).
 bool same_bits(const Vec3d& a, const Vec3d& b) {
-    return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
-           std::bit_cast<std::uint64_t>(a.y) == std::bit_cast<std::uint64_t>(b.y) &&
-           std::bit_cast<std::uint64_t>(a.z) == std::bit_cast<std::uint64_t>(b.z);
+    const double x[3] = {a.x, a.y, a.z}, y[3] = {b.x, b.y, b.z};
+    return std::memcmp(x, y, sizeof x) == 0;
 }
 
 // True when a manifold holds an impulse of any kind: a point's normal impulse, friction, its turn
