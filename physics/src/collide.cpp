@@ -119,7 +119,9 @@ void sphere_sphere(double ra, const Vec3d& ca, double rb, const Vec3d& cb, doubl
 void sphere_hull(double r, const Vec3d& c, const ConvexHull& hull, const Transform& T, bool sphere_is_a, double margin,
                  std::vector<ContactPoint>& out) {
     const Vec3d local = T.R.transposed() * (c - T.x);
-    const NearestOnHull q = nearest_on_hull(hull, local);
+    const double reach = margin + r;
+    const NearestOnHull q = nearest_on_hull(hull, local, reach);
+    if (q.distance > reach) return;  // out of reach (perhaps only a bound)
     const double separation = q.distance - r;
     if (separation > margin) return;
     const Vec3d n = T.R * q.normal;  // out of the hull

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "physics/collide.h"
 #include "physics/mat3.h"
@@ -30,6 +31,9 @@ inline Transform relative_transform(const Transform& a, const Transform& b) {
 
 // The point of a hull nearest to p (all in the hull's axes), and which feature it lies on.
 // Inside (or on) the hull: on the face of least penetration, p moved out along its normal.
+// When p lies higher than `beyond` above some face's plane, the hull is farther than that from it
+// (the distance is at least the height above any face): only that height comes back, as
+// `distance`, and the rest is left unset (a sphere out of reach needs no more).
 struct NearestOnHull {
     enum class Feature { Face, Edge, Vertex };
     Vec3d point;
@@ -38,6 +42,7 @@ struct NearestOnHull {
     Feature feature = Feature::Face;
     std::uint32_t index[2] = {0, 0};  // the face; the edge's two vertices (smaller first); the vertex
 };
-NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p);
+NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p,
+                             double beyond = std::numeric_limits<double>::infinity());
 
 }  // namespace softbody

@@ -15,7 +15,7 @@ namespace softbody {
 // polygons at most, for a 64-vertex hull. Inside, the nearest surface point is p's projection
 // onto the nearest face plane, which lies on that face: for any other face j, moving p by the
 // least depth t along n_i raises n_j . p by at most t, which is not more than its own depth.
-NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p) {
+NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p, double beyond) {
     NearestOnHull out;
     double highest = -std::numeric_limits<double>::infinity();
     std::size_t top = 0;
@@ -25,6 +25,10 @@ NearestOnHull nearest_on_hull(const ConvexHull& hull, const Vec3d& p) {
             highest = above;
             top = f;
         }
+    }
+    if (highest > beyond) {
+        out.distance = highest;
+        return out;
     }
     if (highest <= 0.0) {
         const Vec3d n = hull.faces[top].normal;

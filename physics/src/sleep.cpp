@@ -30,6 +30,38 @@ struct Islands {
 
 }  // namespace
 
+namespace {
+
+// The contacts `leaves` picks, moved from `from` to the end of `to`; both lists keep their order.
+// A stable partition without the scratch copy of the whole list std::stable_partition makes, and
+// no copy at all when the whole list goes into an empty one (a pyramid falling asleep at once): a
+// pile's contacts are megabytes, and the fresh pages of those copies made the tick stack:10 fell
+// asleep in 2 ms longer than the ticks before it.
+template <class Leaves>
+void move_contacts(std::vector<RigidContact>& from, std::vector<RigidContact>& to, const Leaves& leaves) {
+    const std::size_t leaving = std::size_t(std::count_if(from.begin(), from.end(), leaves));
+    if (leaving == 0) return;
+    if (leaving == from.size() && to.empty()) {  // a whole pile at once: no copy at all
+        std::swap(from, to);
+        return;
+    }
+    // Grown to twice at least (a pile falling asleep an island at a time adds to its sleeping
+    // contacts tick after tick: each growth is a copy into fresh pages).
+    if (to.size() + leaving > to.capacity()) to.reserve(std::max(to.size() + leaving, 2 * to.capacity()));
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < from.size(); ++k) {
+        if (leaves(from[k])) {
+            to.push_back(from[k]);
+        } else {
+            if (kept != k) from[kept] = from[k];
+            ++kept;
+        }
+    }
+    from.resize(kept);
+}
+
+}  // namespace
+
 void World::reset_sleep() {
     sleep_.rest_time.assign(rigid_.size(), 0.0);
     sleep_.rest_pose.assign(rigid_.size() * kRestPoseSize, 0.0);
@@ -55,10 +87,7 @@ void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidCo
         if (b < motion_.size()) motion_[b] = rigid_motion(b);  // awake from now on (motion_)
     }
     // Those of bodies now awake go; the rest stay, in their order.
-    const auto awake = std::stable_partition(sleep_.contacts.begin(), sleep_.contacts.end(),
-                                             [&](const RigidContact& c) { return asleep_[c.a] != 0; });
-    warm.insert(warm.end(), awake, sleep_.contacts.end());
-    sleep_.contacts.erase(awake, sleep_.contacts.end());
+    move_contacts(sleep_.contacts, warm, [&](const RigidContact& c) { return asleep_[c.a] == 0; });
 }
 
 namespace {
@@ -253,10 +282,7 @@ void World::update_sleep() {
     }
     if (!fell) return;
     // Their contacts are set aside, to warm-start the solver when they wake.
-    const auto asleep = std::stable_partition(contacts_.begin(), contacts_.end(),
-                                              [&](const RigidContact& c) { return c.soft >= 0 || !asleep_[c.a]; });
-    sleep_.contacts.insert(sleep_.contacts.end(), asleep, contacts_.end());
-    contacts_.erase(asleep, contacts_.end());
+    move_contacts(contacts_, sleep_.contacts, [&](const RigidContact& c) { return c.soft < 0 && asleep_[c.a] != 0; });
 }
 
 }  // namespace softbody
