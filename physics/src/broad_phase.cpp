@@ -73,10 +73,51 @@ void sort_pairs(std::vector<BodyPair>& pairs, std::size_t bodies) {
     pairs.swap(placed);
 }
 
+// `starts` (each finite box's start on `axis` and its index, in the boxes' order) sorted by
+// start, from the order `last` holds where it names the same boxes: by insertion, which moves
+// each box only past those it overtook since (a sort from nothing where that is too many).
+// Boxes that start together may come in any order (overlapping_pairs does not depend on it).
+void sort_starts(std::vector<std::pair<double, std::uint32_t>>& starts, std::span<const Aabb> boxes, int axis,
+                 SweepOrder* last) {
+    const auto by_start = [](const std::pair<double, std::uint32_t>& a, const std::pair<double, std::uint32_t>& b) {
+        return a.first < b.first;
+    };
+    bool from_last = last && last->axis == axis && last->boxes.size() == starts.size();
+    if (from_last) {
+        // The same boxes when as many are named, each finite and named once.
+        std::vector<std::uint8_t>& named = last->named;
+        named.assign(boxes.size(), 0);
+        for (std::size_t k = 0; k < starts.size() && from_last; ++k) {
+            const std::uint32_t b = last->boxes[k];
+            from_last = b < boxes.size() && finite(boxes[b]) && !named[b];
+            if (from_last) named[b] = 1;
+        }
+    }
+    if (from_last) {
+        for (std::size_t k = 0; k < starts.size(); ++k) starts[k] = {boxes[last->boxes[k]].lo[axis], last->boxes[k]};
+    }
+    if (!from_last) {
+        std::sort(starts.begin(), starts.end(), by_start);
+        return;
+    }
+    std::size_t moves = 0;
+    const std::size_t most_moves = 8 * starts.size() + 64;
+    for (std::size_t i = 1; i < starts.size(); ++i) {
+        const std::pair<double, std::uint32_t> item = starts[i];
+        std::size_t j = i;
+        for (; j > 0 && by_start(item, starts[j - 1]) && moves < most_moves; --j, ++moves) starts[j] = starts[j - 1];
+        starts[j] = item;
+        if (moves >= most_moves) {  // far from the last order: a whole sort after all
+            std::sort(starts.begin(), starts.end(), by_start);
+            return;
+        }
+    }
+}
+
 }  // namespace
 
 void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet,
-                       ThreadPool* pool) {
+                       ThreadPool* pool, SweepOrder* order) {
     out.clear();
     const std::array<int, 3> axes = axes_by_spread(boxes);
     const int axis = axes[0], u = axes[1], v = axes[2];
@@ -102,7 +143,12 @@ void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, 
         starts.push_back({b.lo[axis], std::uint32_t(i)});
     }
     if (starts.empty()) return;
-    std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    sort_starts(starts, boxes, axis, order);
+    if (order) {
+        order->axis = axis;
+        order->boxes.resize(starts.size());
+        for (std::size_t k = 0; k < starts.size(); ++k) order->boxes[k] = starts[k].second;
+    }
     // The strips: the boxes cut along the second axis into strips about twice a box as wide
     // (at most kMostStrips), each box in every strip it reaches, and each strip swept on its
     // own. A pile spread over a floor has most of its boxes overlapping a given one on the sweep

@@ -252,20 +252,27 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     h_ = settings.dt / double(settings.substeps);
     substeps_done_ = 0;
     energy_ = {};
-    bodies_.assign(1, Body{});
     rigid_index_.assign(world.bodies.size(), 0);
     if (contacts.empty()) {
+        bodies_.assign(1, Body{});
         manifolds_.clear();
         points_.clear();
         body_order_.clear();
         return;
     }
 
-    // Solver bodies, in order of first appearance (the contacts' order: the same on every run).
+    // Solver bodies, numbered in order of first appearance (the contacts' order: the same on
+    // every run) as the manifolds are scanned, and built after, on every thread (a body is
+    // most of a kilobyte: built one by one, a thousand of them were the longest stretch of the
+    // preparation the other thread sat out).
     Buffers& kept = buffers_;
     std::vector<std::vector<std::int32_t>>& particle_index = kept.particle_index;
     particle_index.resize(world.particles.size());
     for (std::vector<std::int32_t>& map : particle_index) map.clear();
+    std::vector<std::uint32_t>& body_of = kept.body_of;
+    std::vector<std::int32_t>& soft_of = kept.soft_of;
+    body_of.assign(1, 0);
+    soft_of.assign(1, -1);
     const auto rigid_body = [&](std::int64_t b) -> std::uint32_t {
         if (b < 0) return 0;
         const RigidBody& body = world.bodies[std::size_t(b)];
@@ -273,15 +280,9 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (!world.asleep.empty() && world.asleep[std::size_t(b)]) return 0;  // asleep: as still as a fixed body
         std::int32_t& at = rigid_index_[std::size_t(b)];
         if (at == 0) {
-            at = std::int32_t(bodies_.size());
-            Body& s = bodies_.emplace_back();  // (built in place: a body is a few hundred bytes)
-            s.kind = Body::Kind::Rigid;
-            s.index = std::uint32_t(b);
-            s.inv_mass = body.inv_mass;
-            const double* y = &world.tick_start[std::size_t(b) * rigid::kStateSize];
-            s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
-            s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
-            s.round = body.shape == ShapeKind::Sphere;
+            at = std::int32_t(body_of.size());
+            body_of.push_back(std::uint32_t(b));
+            soft_of.push_back(-1);
         }
         return std::uint32_t(at);
     };
@@ -291,15 +292,36 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         if (p.inv_mass[i] == 0.0f) return 0;  // pinned: it does not move
         if (map.empty()) map.assign(world.particle_step_start_v[std::size_t(soft)]->size(), 0);
         if (map[i] == 0) {
-            map[i] = std::int32_t(bodies_.size());
-            Body& s = bodies_.emplace_back();
+            map[i] = std::int32_t(body_of.size());
+            body_of.push_back(i);
+            soft_of.push_back(soft);
+        }
+        return std::uint32_t(map[i]);
+    };
+    // Body b as numbered (0: the static world).
+    const auto build_body = [&](std::size_t b) {
+        Body& s = bodies_[b];
+        s = Body{};
+        if (b == 0) return;
+        const std::uint32_t i = body_of[b];
+        const std::int32_t soft = soft_of[b];
+        if (soft < 0) {
+            const RigidBody& body = world.bodies[i];
+            s.kind = Body::Kind::Rigid;
+            s.index = i;
+            s.inv_mass = body.inv_mass;
+            const double* y = &world.tick_start[std::size_t(i) * rigid::kStateSize];
+            s.x0 = s.x = {y[rigid::X], y[rigid::X + 1], y[rigid::X + 2]};
+            s.q0 = s.q_ref = Quat{y[rigid::Q], y[rigid::Q + 1], y[rigid::Q + 2], y[rigid::Q + 3]};
+            s.round = body.shape == ShapeKind::Sphere;
+        } else {
+            const SolverParticles& p = world.particles[std::size_t(soft)];
             s.kind = Body::Kind::Particle;
             s.index = i;
             s.soft = soft;
             s.inv_mass = p.inv_mass[i];
             s.x0 = s.x = {p.x[i], p.y[i], p.z[i]};
         }
-        return std::uint32_t(map[i]);
     };
 
     // Each contact's point of the last tick, to start from its impulses (warm starting): the
@@ -421,6 +443,9 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
         }
     }
     pool_ = world.pool;
+    // (Sized without clearing first: each is set whole.)
+    resize_with_room(bodies_, body_of.size());
+    parallel(bodies_.size(), kBodyGrain, build_body);
     slabs(found);
     // Sized without clearing first: each manifold and point is set whole below (a pile's are
     // tens of megabytes, and clearing them first too is work on one thread every tick).

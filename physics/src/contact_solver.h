@@ -287,6 +287,8 @@ private:
         std::vector<std::uint32_t> first_finder;
         std::vector<std::int64_t> match;
         std::vector<std::vector<std::int32_t>> particle_index;
+        std::vector<std::uint32_t> body_of;  // each solver body's rigid body or particle (by kind, below)
+        std::vector<std::int32_t> soft_of;   // its particle's soft body, -1 for a rigid body
         std::vector<FoundManifold> found;
         std::vector<std::uint32_t> first_point;
         std::vector<std::uint32_t> parent;

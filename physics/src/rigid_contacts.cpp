@@ -217,7 +217,7 @@ std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<con
     for_chunks(pool, n, kBoxGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, motions, b, scratch);
     });
-    overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
+    overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool, &scratch.sweep_order);
     return test_pairs(bodies, shapes, start, world, scratch, out, at, {}, true, pool);
 }
 
@@ -248,7 +248,7 @@ void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<cons
     if (woken.size() <= kFewWoken) {
         overlapping_pairs_of(scratch.boxes, woken, scratch.pairs);
     } else {
-        overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool);
+        overlapping_pairs(scratch.boxes, scratch.pairs, scratch.quiet, pool, &scratch.sweep_order);
     }
     out.resize(test_pairs(bodies, shapes, start, world, scratch, out, out.size(), was_quiet, false, pool));
 }

@@ -36,6 +36,7 @@ struct RigidContactScratch {
     std::vector<double> margins;
     std::vector<BodyPair> pairs;
     std::vector<std::uint8_t> quiet;               // asleep or fixed: not paired with one another
+    SweepOrder sweep_order;                        // the broad phase's last order (only a hint)
     std::vector<std::vector<ContactPoint>> points;  // per chunk of work (for_chunks)
     std::vector<std::vector<RigidContact>> found;   // per chunk, joined in order
     std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)

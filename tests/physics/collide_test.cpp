@@ -892,6 +892,52 @@ TEST(BroadPhase, PileOverAFloorSameAsBruteForce) {
     EXPECT_EQ(pairs, brute_pairs(boxes));
 }
 
+// The last sweep's order is a hint the next sort starts from (a pile moves little between two
+// finds): the pairs are brute force's whatever it holds. From the last order after every box
+// moved a little, after they were scattered anew (too far from it: a whole sort), and from
+// orders that do not name the same boxes: another axis, too few, one named twice, one out of
+// range, one that is no longer a number.
+TEST(BroadPhase, PairsTheSameFromAnyLastOrder) {
+    std::vector<Aabb> boxes = random_boxes(5, 0.01);
+    SweepOrder order;
+    std::vector<BodyPair> pairs;
+    overlapping_pairs(boxes, pairs, {}, nullptr, &order);
+    EXPECT_EQ(pairs, brute_pairs(boxes));
+    ASSERT_GE(order.axis, 0);
+    ASSERT_EQ(order.boxes.size(), boxes.size());
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<double> nudge(-0.05, 0.05);
+    for (Aabb& b : boxes) {
+        const Vec3d d{nudge(rng), nudge(rng), nudge(rng)};
+        b = {b.lo + d, b.hi + d};
+    }
+    overlapping_pairs(boxes, pairs, {}, nullptr, &order);
+    EXPECT_EQ(pairs, brute_pairs(boxes));
+    const std::vector<Aabb> scattered = random_boxes(7, 0.01);
+    overlapping_pairs(scattered, pairs, {}, nullptr, &order);
+    EXPECT_EQ(pairs, brute_pairs(scattered));
+    const SweepOrder kept = order;
+    const auto from = [&](SweepOrder hint) {
+        overlapping_pairs(scattered, pairs, {}, nullptr, &hint);
+        return pairs;
+    };
+    SweepOrder other_axis = kept;
+    other_axis.axis = (kept.axis + 1) % 3;
+    SweepOrder too_few = kept;
+    too_few.boxes.pop_back();
+    SweepOrder twice = kept;
+    twice.boxes[1] = twice.boxes[0];
+    SweepOrder out_of_range = kept;
+    out_of_range.boxes[2] = std::uint32_t(scattered.size());
+    for (const SweepOrder& hint : {other_axis, too_few, twice, out_of_range}) EXPECT_EQ(from(hint), brute_pairs(scattered));
+    std::vector<Aabb> one_lost = scattered;
+    one_lost[kept.boxes[3]].lo.y = std::nan("");
+    SweepOrder last = kept;
+    overlapping_pairs(one_lost, pairs, {}, nullptr, &last);
+    EXPECT_EQ(pairs, brute_pairs(one_lost));
+    EXPECT_EQ(last.boxes.size(), scattered.size() - 1);
+}
+
 // The pairs of a few boxes (bodies just woken) with all the others: the sweep's pairs that have
 // one of them, in the same order, each pair of two of them once; a box that is not a number
 // among them meets nothing.

@@ -33,6 +33,16 @@ struct BodyPair {
     auto operator<=>(const BodyPair&) const = default;
 };
 
+// The order a sweep left the boxes in along its axis, for the next to start its sort from: a
+// pile moves little between two finds, so its boxes come nearly in order, and a sort by
+// insertion from there moves each a place or two where a sort from nothing compares n log n
+// times. Only a hint: the pairs are the same whatever it holds (or none).
+struct SweepOrder {
+    int axis = -1;
+    std::vector<std::uint32_t> boxes;  // indices, by their start on `axis`
+    std::vector<std::uint8_t> named;   // (scratch: which boxes it names)
+};
+
 // Every pair of overlapping boxes, written into `out` (cleared first), in increasing order of
 // (a, b): the same pairs in the same order on every run and machine, whatever the sort did.
 // The sweep runs along the axis on which the boxes' centres spread most (a pile is tall, a row
@@ -42,12 +52,13 @@ struct BodyPair {
 // that it overlaps on the sweep axis, not every box of the floor's width that does. A huge box
 // (a fixed ramp, the floor) is in every strip it reaches, and costs one pass over the boxes
 // that start within it in each. A box with a coordinate that is not a number overlaps nothing.
-// Cost: O(n log n) for the sort plus O(n k) for the sweep, k the boxes of its strips
-// overlapping one on the sweep axis.
+// Cost: O(n log n) for the sort (about O(n) from the last order, when `last` holds it) plus
+// O(n k) for the sweep, k the boxes of its strips overlapping one on the sweep axis.
 // `quiet` (empty: none): boxes so marked (bodies asleep or fixed) are not paired with one another.
 // With a `pool`, the sweep runs on its threads in chunks of boxes (the pairs sorted all the same).
+// With `order`, the sort starts from the order it holds, and it is left holding this sweep's.
 void overlapping_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out, std::span<const std::uint8_t> quiet = {},
-                       ThreadPool* pool = nullptr);
+                       ThreadPool* pool = nullptr, SweepOrder* order = nullptr);
 
 // The pairs of overlapping boxes of which at least one is among `some` (indices into boxes),
 // written into `out` (cleared first) in increasing order of (a, b), as overlapping_pairs gives
