@@ -40,6 +40,7 @@ struct RigidContactScratch {
     std::vector<std::vector<ContactPoint>> points;  // per chunk of work (for_chunks)
     std::vector<std::vector<RigidContact>> found;   // per chunk, joined in order
     std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)
+    std::vector<RigidContact> merged;               // a find's list with the woken bodies' (World::add_woken_contacts)
     PairCache cache;  // the pairs of hulls tested in the last find (world state: in a snapshot)
     std::vector<std::vector<CachedPair>> new_pairs;          // per chunk, joined in order
     std::vector<std::vector<CachedPoint>> new_points;        // per chunk

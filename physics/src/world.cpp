@@ -405,12 +405,15 @@ void World::add_woken_contacts(double reach, const std::vector<std::uint8_t>& wa
     };
     const auto ground_end = std::find_if_not(contacts_.begin(), contacts_.end(), is_ground);
     const auto pairs_end = std::find_if_not(ground_end, contacts_.end(), is_pair);
-    std::vector<RigidContact> merged;
+    // Into a list kept from wake to wake, which then swaps with the find's (a pile's contacts
+    // are megabytes: a new list each wake was as many new pages).
+    std::vector<RigidContact>& merged = rigid_contact_scratch_->merged;
+    merged.clear();
     merged.reserve(contacts_.size() + ground.size() + pairs.size());
     std::merge(contacts_.begin(), ground_end, ground.begin(), ground.end(), std::back_inserter(merged), by_body);
     std::merge(ground_end, pairs_end, pairs.begin(), pairs.end(), std::back_inserter(merged), by_pair);
     merged.insert(merged.end(), pairs_end, contacts_.end());
-    contacts_ = std::move(merged);
+    contacts_.swap(merged);
 }
 
 // The solver prepares the contacts found for an interval starting now (the tick, the rest of it,
