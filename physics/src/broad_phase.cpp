@@ -67,8 +67,19 @@ void sort_pairs(std::vector<BodyPair>& pairs, std::size_t bodies) {
     std::vector<BodyPair> placed(pairs.size());
     std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
     for (const BodyPair& p : pairs) placed[at[p.a]++] = p;
+    // Each a's few by insertion where they are few (a handful each, mostly: a sort's set-up cost
+    // more than the sorting), by a sort where they are many (a wall meets hundreds).
     for (std::size_t a = 0; a < bodies; ++a) {
-        std::sort(placed.begin() + start[a], placed.begin() + start[a + 1], [](const BodyPair& x, const BodyPair& y) { return x.b < y.b; });
+        if (start[a + 1] - start[a] > 16) {
+            std::sort(placed.begin() + start[a], placed.begin() + start[a + 1], [](const BodyPair& x, const BodyPair& y) { return x.b < y.b; });
+            continue;
+        }
+        for (std::size_t i = start[a] + 1; i < start[a + 1]; ++i) {
+            const BodyPair item = placed[i];
+            std::size_t j = i;
+            for (; j > start[a] && item.b < placed[j - 1].b; --j) placed[j] = placed[j - 1];
+            placed[j] = item;
+        }
     }
     pairs.swap(placed);
 }

@@ -221,8 +221,10 @@ void World::step(float h) {
     const double hd = h;
     const bool contacts = !contacts_.empty();
     // Where the substep begins: symplectic Euler's positions move on from here, and each
-    // contact's approach is measured from here.
-    if (!rigid_.empty()) y_step_start_ = y_;
+    // contact's approach is measured from here. (Under Verlet and symplectic Euler each chunk
+    // of bodies keeps its own just before the momenta change, on every thread.)
+    const bool exact_turn = settings_.integrator == Integrator::Verlet || settings_.integrator == Integrator::SymplecticEuler;
+    if (!rigid_.empty() && !exact_turn) y_step_start_ = y_;
     // And where each particle began it, for its contacts and its impacts with the ground.
     if (contacts || settings_.ground) {
         for (SoftBody& body : soft_) {
@@ -244,8 +246,10 @@ void World::step(float h) {
             }
             // Rigid bodies: the momenta, then x and q from them. Verlet is this for a rigid body.
             if (!rigid_.empty()) {
+                y_step_start_.resize(y_.size());
                 for_chunks(pool_.get(), rigid_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
                     const std::size_t from = begin * rigid::kStateSize, count = (end - begin) * rigid::kStateSize;
+                    std::copy_n(y_.begin() + std::ptrdiff_t(from), count, y_step_start_.begin() + std::ptrdiff_t(from));
                     flat_euler_momenta(std::span<double>(y_).subspan(from, count), std::span<const double>(k_[0]).subspan(from, count), hd);
                 });
                 symplectic_positions(rigid_, y_step_start_, y_, hd, asleep_, pool_.get());
