@@ -26,6 +26,22 @@ using Key = ContactKey;
 // prepare()); such a scan keeps a list of what it found per chunk (for_chunks: at most four a
 // thread).
 constexpr std::size_t kScanGrain = 1024;
+
+// For each set of a manifold's points (bit i: point i), how many and which, in order
+// (solve_manifold).
+struct PointsOf {
+    int count = 0;
+    std::array<int, 4> index{};
+};
+constexpr std::array<PointsOf, 16> kPointsOf = [] {
+    std::array<PointsOf, 16> lists{};
+    for (unsigned set = 0; set < 16; ++set) {
+        for (int i = 0; i < 4; ++i) {
+            if (set & (1u << i)) lists[set].index[std::size_t(lists[set].count++)] = i;
+        }
+    }
+    return lists;
+}();
 std::size_t most_chunks(const ThreadPool* pool) { return 4 * std::size_t(pool ? pool->threads() : 1); }
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
@@ -1037,13 +1053,17 @@ void ContactSolver::solve_manifold(Manifold& m, bool bias) {
     // next substep's solve stops that point at its surface (held here, it would stop short
     // of it, and bounce in the air).
     PassPoint* const P = &pass_[m.first];
-    // (Counted without a branch: in the relax, which points touch changes from manifold to
-    // manifold, and a branch on it was mispredicted often enough to show in a profile.)
-    int index[4], count = 0;
-    for (int i = 0; i < n; ++i) {
-        index[count] = i;
-        count += int(bias | (P[i].s <= kSpeculative));
+    // The points that take part (all of them in the solve), as a set of bits, then listed from
+    // a table: without a branch (in the relax, which points touch changes from manifold to
+    // manifold, and a branch on it was mispredicted often enough to show in a profile) and
+    // without a count carried through each point's store.
+    unsigned taking = (1u << n) - 1u;
+    if (!bias) {
+        taking = 0;
+        for (int i = 0; i < n; ++i) taking |= unsigned(P[i].s <= kSpeculative) << i;
     }
+    const std::array<int, 4>& index = kPointsOf[taking].index;
+    const int count = kPointsOf[taking].count;
     // A point's normal velocity: the bodies' relative motion along n (the same for every point
     // of the manifold), then each side's turn at the point.
     const auto linear_velocity = [&] { return dot(A.v - B.v, m.n); };
