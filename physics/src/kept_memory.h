@@ -30,6 +30,25 @@ void reserve_with_room(V& v, std::size_t n) {
     if (n > v.capacity()) v.reserve(n + n / 8);
 }
 
+// Runs `place(c, to)` for each of the first `chunks` of `parts`, `to` where part c's items go in
+// `out` (they follow one another in the parts' order from position `at` on), each part on one of
+// the pool's threads. `out` grows where it is short and never shrinks; returns the position
+// after the last item. (What the two place_chunks below share.)
+template <class T, class U, class Place>
+std::size_t place_parts(std::vector<T>& out, std::size_t at, const std::vector<std::vector<U>>& parts, std::size_t chunks,
+                        ThreadPool* pool, const Place& place) {
+    std::vector<std::size_t> begin(chunks + 1, at);
+    for (std::size_t c = 0; c < chunks; ++c) begin[c + 1] = begin[c] + parts[c].size();
+    if (out.size() < begin[chunks]) resize_with_room(out, begin[chunks]);
+    const auto one = [&](std::size_t c) { place(c, out.data() + begin[c]); };
+    if (pool && chunks > 1) {
+        pool->run(chunks, one);
+    } else {
+        for (std::size_t c = 0; c < chunks; ++c) one(c);
+    }
+    return begin[chunks];
+}
+
 // Writes the first `chunks` of `parts` into `out` from position `at` on, in their order, each
 // part copied by one of the pool's threads (a pile's contacts are tens of megabytes, and copying
 // them on one thread was the longest stretch of a tick the other thread sat out), then
@@ -41,20 +60,21 @@ void reserve_with_room(V& v, std::size_t n) {
 template <class T, class Fix>
 std::size_t place_chunks(std::vector<T>& out, std::size_t at, const std::vector<std::vector<T>>& parts, std::size_t chunks,
                          ThreadPool* pool, const Fix& fix) {
-    std::vector<std::size_t> begin(chunks + 1, at);
-    for (std::size_t c = 0; c < chunks; ++c) begin[c + 1] = begin[c] + parts[c].size();
-    if (out.size() < begin[chunks]) resize_with_room(out, begin[chunks]);
-    const auto copy = [&](std::size_t c) {
-        T* to = out.data() + begin[c];
+    return place_parts(out, at, parts, chunks, pool, [&](std::size_t c, T* to) {
         std::copy(parts[c].begin(), parts[c].end(), to);
         for (std::size_t k = 0; k < parts[c].size(); ++k) fix(to[k], c);
-    };
-    if (pool && chunks > 1) {
-        pool->run(chunks, copy);
-    } else {
-        for (std::size_t c = 0; c < chunks; ++c) copy(c);
-    }
-    return begin[chunks];
+    });
+}
+
+// The same, each item of `out` made where it goes from a part's smaller record: `make(record, c)`
+// (a pile's narrow phase keeps each point in a quarter of a contact's bytes, and the contact is
+// written once, in its place, instead of written whole and then copied).
+template <class T, class U, class Make>
+std::size_t place_made(std::vector<T>& out, std::size_t at, const std::vector<std::vector<U>>& parts, std::size_t chunks,
+                       ThreadPool* pool, const Make& make) {
+    return place_parts(out, at, parts, chunks, pool, [&](std::size_t c, T* to) {
+        for (const U& record : parts[c]) *to++ = make(record, c);
+    });
 }
 
 // A chunk's own list from a table of them (one list a chunk, as place_chunks joins), taken out

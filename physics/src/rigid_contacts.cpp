@@ -122,16 +122,19 @@ std::size_t test_pairs(std::span<const RigidBody> bodies, std::span<const Collis
     const std::size_t most = pool ? 4 * std::size_t(pool->threads()) : 1;
     if (scratch.found.size() < most) {
         scratch.found.resize(most);
+        scratch.found_pairs.resize(most);
         scratch.points.resize(most);
         scratch.new_pairs.resize(most);
         scratch.new_points.resize(most);
     }
     const std::size_t chunks = for_chunks(pool, scratch.pairs.size(), kPairGrain, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkList taken_found(scratch.found[chunk]);
+        ChunkList taken_found_pairs(scratch.found_pairs[chunk]);
         ChunkList taken_points(scratch.points[chunk]);
         ChunkList taken_pairs(scratch.new_pairs[chunk]);
         ChunkList taken_new_points(scratch.new_points[chunk]);
-        std::vector<RigidContact>& found = *taken_found;
+        std::vector<RigidContactScratch::FoundPoint>& found = *taken_found;
+        std::vector<RigidContactScratch::FoundPair>& found_pairs = *taken_found_pairs;
         std::vector<ContactPoint>& points = *taken_points;
         std::vector<CachedPair>& new_pairs = *taken_pairs;
         std::vector<CachedPoint>& new_points = *taken_new_points;
@@ -158,25 +161,35 @@ std::size_t test_pairs(std::span<const RigidBody> bodies, std::span<const Collis
             if (points.empty()) continue;
             const Vec3d xa{sa[rigid::X], sa[rigid::X + 1], sa[rigid::X + 2]}, xb{sb[rigid::X], sb[rigid::X + 1], sb[rigid::X + 2]};
             const RigidBody &a = bodies[ia], &b = bodies[ib];
-            RigidContact c;
-            c.a = ia;
-            c.b = std::int32_t(ib);
-            c.restitution = std::max(a.restitution.value_or(world.restitution), b.restitution.value_or(world.restitution));
-            c.friction = std::sqrt(double(a.friction.value_or(world.dynamic_friction)) * b.friction.value_or(world.dynamic_friction));
-            c.rolling = std::max(double(a.rolling_resistance) * a.rolling_radius, double(b.rolling_resistance) * b.rolling_radius);
-            for (const ContactPoint& p : points) {
-                c.feature = p.feature;
-                c.point = p.point;
-                c.normal = p.normal;
-                c.separation = -p.depth;
-                c.depth = p.depth;
-                c.arm_a = p.point - xa;
-                c.arm_b = p.point - xb;
-                found.push_back(c);
-            }
+            RigidContactScratch::FoundPair& pair_found = found_pairs.emplace_back();
+            pair_found.a = ia;
+            pair_found.b = ib;
+            pair_found.restitution = std::max(a.restitution.value_or(world.restitution), b.restitution.value_or(world.restitution));
+            pair_found.friction = std::sqrt(double(a.friction.value_or(world.dynamic_friction)) * b.friction.value_or(world.dynamic_friction));
+            pair_found.rolling = std::max(double(a.rolling_resistance) * a.rolling_radius, double(b.rolling_resistance) * b.rolling_radius);
+            pair_found.xa = xa;
+            pair_found.xb = xb;
+            const std::uint32_t pair_at = std::uint32_t(found_pairs.size() - 1);
+            for (const ContactPoint& p : points) found.push_back({p.point, p.normal, p.depth, p.feature, pair_at});
         }
     });
-    const std::size_t end = place_chunks(out, at, scratch.found, chunks, pool);
+    const std::size_t end = place_made(out, at, scratch.found, chunks, pool, [&](const RigidContactScratch::FoundPoint& p, std::size_t chunk) {
+        const RigidContactScratch::FoundPair& pair = scratch.found_pairs[chunk][p.pair];
+        RigidContact c;
+        c.a = pair.a;
+        c.b = std::int32_t(pair.b);
+        c.restitution = pair.restitution;
+        c.friction = pair.friction;
+        c.rolling = pair.rolling;
+        c.feature = p.feature;
+        c.point = p.point;
+        c.normal = p.normal;
+        c.separation = -p.depth;
+        c.depth = p.depth;
+        c.arm_a = p.point - pair.xa;
+        c.arm_b = p.point - pair.xb;
+        return c;
+    });
     // This find's answers, by key, for the next (over the last find's, or after them): each
     // pair's first point moved on by the points of the chunks before its own, and by those
     // already in the cache.

@@ -38,7 +38,20 @@ struct RigidContactScratch {
     std::vector<std::uint8_t> quiet;               // asleep or fixed: not paired with one another
     SweepOrder sweep_order;                        // the broad phase's last order (only a hint)
     std::vector<std::vector<ContactPoint>> points;  // per chunk of work (for_chunks)
-    std::vector<std::vector<RigidContact>> found;   // per chunk, joined in order
+    // The narrow phase's answers, per chunk, joined in order: each point with the pair it is of
+    // (in the chunk's found_pairs), made into a RigidContact where it is placed.
+    struct FoundPoint {
+        Vec3d point, normal;
+        double depth = 0.0;
+        std::uint32_t feature = 0, pair = 0;
+    };
+    struct FoundPair {
+        std::uint32_t a = 0, b = 0;  // as RigidContact's
+        double restitution = 0.0, friction = 0.0, rolling = 0.0;
+        Vec3d xa, xb;  // the two centres
+    };
+    std::vector<std::vector<FoundPoint>> found;
+    std::vector<std::vector<FoundPair>> found_pairs;
     std::vector<std::vector<RigidContact>> ground;  // the same for the ground's (World::generate_contacts)
     std::vector<RigidContact> merged;               // a find's list with the woken bodies' (World::add_woken_contacts)
     PairCache cache;  // the pairs of hulls tested in the last find (world state: in a snapshot)
