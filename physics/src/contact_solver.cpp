@@ -42,6 +42,16 @@ constexpr std::array<PointsOf, 16> kPointsOf = [] {
     }
     return lists;
 }();
+// The manifolds are laid out in the passes' order, their contacts in the order they were found:
+// a walk through the manifolds reads (prepare) or writes (finish) the contacts of each at another
+// place, 256 bytes a point, and in a pile they are tens of megabytes, out of the cache. So the
+// contacts of the manifold kFetchAhead on are asked for while one is worked on.
+constexpr std::size_t kFetchAhead = 4;
+template <bool kWrite>
+void fetch_contacts(const RigidContact* first, std::uint32_t count) {
+    const char* at = reinterpret_cast<const char*>(first);
+    for (std::size_t byte = 0; byte < count * sizeof(RigidContact); byte += 64) __builtin_prefetch(at + byte, kWrite ? 1 : 0);
+}
 std::size_t most_chunks(const ThreadPool* pool) { return 4 * std::size_t(pool ? pool->threads() : 1); }
 Key key_of(const RigidContact& c) { return {c.soft, c.a, c.b, c.feature}; }
 
@@ -508,6 +518,10 @@ void ContactSolver::prepare(std::vector<RigidContact>& contacts, const std::vect
     // Each manifold built where the passes take it, then set up, and its approach recorded, while
     // it is at hand (in stack:20, 20,000 manifolds of 40 MB with their points).
     parallel(found.size(), kManifoldGrain, [&](std::size_t at) {
+        if (at + kFetchAhead < found.size()) {
+            const FoundManifold& ahead = found[slab_order_[at + kFetchAhead]];
+            fetch_contacts<false>(&contacts[ahead.contact], ahead.count);
+        }
         const FoundManifold& f = found[slab_order_[at]];
         const RigidContact& first = contacts[f.contact];
         Manifold& m = manifolds_[at];
@@ -658,7 +672,11 @@ void ContactSolver::each_in_slabs(int passes, const F& f) {
 template <class F>
 void ContactSolver::chain_in_slabs(int first, int passes, const F& f) {
     const auto run_group = [&](int pass, std::size_t c) {
-        for (std::uint32_t i = slab_start_[c]; i < slab_start_[c + 1]; ++i) f(manifolds_[i], first + pass);
+        const std::uint32_t end = slab_start_[c + 1];
+        for (std::uint32_t i = slab_start_[c]; i < end; ++i) {
+            if (i + kFetchAhead < end) fetch_bodies(manifolds_[i + kFetchAhead]);
+            f(manifolds_[i], first + pass);
+        }
     };
     // The groups before the last, in the order one thread takes them: the slabs, the boundaries
     // from an even slab, those from an odd one.
@@ -1565,6 +1583,16 @@ void ContactSolver::restitute(bool after_positions) {
 
 // The solved velocities back into the bodies: P and L by what the contacts changed (Eq. 37's
 // L += r x j, as J_world dw), a particle's v, and Verlet's step with it.
+void ContactSolver::fetch_bodies(const Manifold& m) const {
+    for (const std::uint32_t b : {m.a, m.b}) {
+        const Body& s = bodies_[b];
+        __builtin_prefetch(&s.inv_I.m[0][0], 0);
+        __builtin_prefetch(&s.inv_I.m[2][2], 0);
+        __builtin_prefetch(&s.v, 1);
+        __builtin_prefetch(&s.w.z, 1);
+    }
+}
+
 void ContactSolver::store(const ContactWorld& world) {
     each_body([&](std::size_t b) {
         const Body& s = bodies_[b];
@@ -1633,6 +1661,10 @@ void ContactSolver::finish(std::vector<RigidContact>& contacts, const ContactWor
     }
     // The record: what each point took over the tick, and what the next tick starts from.
     parallel(manifolds_.size(), kManifoldGrain, [&](std::size_t i) {
+        if (i + kFetchAhead < manifolds_.size()) {
+            const Manifold& ahead = manifolds_[i + kFetchAhead];
+            fetch_contacts<true>(&contacts[points_[ahead.first].contact], ahead.count);
+        }
         const Manifold& m = manifolds_[i];
         for (std::uint32_t k = m.first; k < m.first + m.count; ++k) {
             const Point& p = points_[k];

@@ -254,6 +254,9 @@ private:
     bool refresh(const ContactWorld& world, Body& s);
     void refresh_manifolds();
     void store(const ContactWorld& world);
+    // Asks for the lines of a manifold's two bodies that a visit reads and writes (v, w, 1/m,
+    // J^-1), a few manifolds ahead of its visit: a pile's bodies do not all fit in the cache.
+    void fetch_bodies(const SolverManifold& m) const;
     void separate(const SolverManifold& m, bool moved);
     void separations(bool moved);
     void restitute(bool after_positions);
