@@ -11,20 +11,28 @@
 namespace softbody {
 
 Aabb world_aabb(const CollisionShape& shape, const Pose& pose, double margin) {
-    Aabb box;
     if (shape.is_sphere()) {
         const Vec3d r{shape.radius + margin, shape.radius + margin, shape.radius + margin};
         return {pose.x - r, pose.x + r};
     }
+    return grown(hull_aabb(shape, pose), margin);
+}
+
+Aabb hull_aabb(const CollisionShape& hull, const Pose& pose) {
     const Transform T = world_transform(pose);
-    box.lo = box.hi = T.apply(shape.hull->vertices.front());
-    for (const Vec3d& v : shape.hull->vertices) {
+    Aabb box;
+    box.lo = box.hi = T.apply(hull.hull->vertices.front());
+    for (const Vec3d& v : hull.hull->vertices) {
         const Vec3d p = T.apply(v);
         for (int k = 0; k < 3; ++k) {
             box.lo[k] = std::min(box.lo[k], p[k]);
             box.hi[k] = std::max(box.hi[k], p[k]);
         }
     }
+    return box;
+}
+
+Aabb grown(const Aabb& box, double margin) {
     const Vec3d m{margin, margin, margin};
     return {box.lo - m, box.hi + m};
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "collide_internal.h"
 #include "ground_contact.h"
@@ -109,7 +110,17 @@ void box_of(std::span<const RigidBody> bodies, std::span<const CollisionShape> s
     } else {
         scratch.margins[b] = speculative_margin(bodies[b], motions.empty() ? rigid_motion(bodies[b], s) : motions[b], h, g);
     }
-    scratch.boxes[b] = world_aabb(shapes[b], pose_of(s), scratch.margins[b]);
+    const Pose pose = pose_of(s);
+    if (shapes[b].is_sphere()) {
+        scratch.boxes[b] = world_aabb(shapes[b], pose, scratch.margins[b]);
+        return;
+    }
+    RigidContactScratch::HullBox& kept = scratch.hull_boxes[b];
+    const auto same_bits = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) == 0; };
+    if (!kept.made || kept.stamp != shapes[b].stamp || !same_bits(kept.pose.x, pose.x) || !same_bits(kept.pose.q, pose.q)) {
+        kept = {true, shapes[b].stamp, pose, hull_aabb(shapes[b], pose)};
+    }
+    scratch.boxes[b] = grown(kept.box, scratch.margins[b]);
 }
 
 // The narrow phase over scratch.pairs (a pair of two quiet bodies skipped, and with `was_quiet`
@@ -227,6 +238,7 @@ std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<con
     }
     scratch.boxes.resize(n);
     scratch.margins.resize(n);
+    scratch.hull_boxes.resize(n);
     for_chunks(pool, n, kBoxGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, motions, b, scratch);
     });
@@ -253,6 +265,7 @@ void woken_rigid_body_contacts(std::span<const RigidBody> bodies, std::span<cons
     if (scratch.boxes.size() != n) {
         scratch.boxes.resize(n);
         scratch.margins.resize(n);
+        scratch.hull_boxes.resize(n);
         for_chunks(pool, n, kBoxGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
             for (std::size_t b = begin; b < end; ++b) box_of(bodies, shapes, start, h, g, asleep, {}, b, scratch);
         });

@@ -33,6 +33,17 @@ namespace softbody {
 // is tested depends on that pair alone: the same at any thread count.
 struct RigidContactScratch {
     std::vector<Aabb> boxes;
+    // Each hull's box before its margin, with what it was made from (the shape's stamp and the
+    // pose): made again from the same bits it would be the same box, so it is kept (a sleeping
+    // body's, find after find; the margin, which changes with the part of the tick left, is
+    // added after).
+    struct HullBox {
+        bool made = false;
+        std::uint64_t stamp = 0;
+        Pose pose;
+        Aabb box;
+    };
+    std::vector<HullBox> hull_boxes;
     std::vector<double> margins;
     std::vector<BodyPair> pairs;
     std::vector<std::uint8_t> quiet;               // asleep or fixed: not paired with one another

@@ -25,6 +25,10 @@ struct Aabb {
 // The shape's box at the pose, grown by `margin` on every side: a hull's from its vertices
 // under the pose (exact), a sphere's from its radius.
 Aabb world_aabb(const CollisionShape& shape, const Pose& pose, double margin);
+// A hull's box at the pose, not grown; and a box grown by `margin` on every side (world_aabb
+// of a hull is the two, to the bit).
+Aabb hull_aabb(const CollisionShape& hull, const Pose& pose);
+Aabb grown(const Aabb& box, double margin);
 
 // Two bodies by their indices, a < b.
 struct BodyPair {
