@@ -36,21 +36,21 @@ namespace {
 // A stable partition without the scratch copy of the whole list std::stable_partition makes, and
 // no copy at all when the whole list goes into an empty one (a pyramid falling asleep at once): a
 // pile's contacts are megabytes, and the fresh pages of those copies made the tick stack:10 fell
-// asleep in 2 ms longer than the ticks before it.
+// asleep in 2 ms longer than the ticks before it. One pass over the list, each contact asked
+// once: in bin:3000, where an island wakes most ticks, a pass over the sleeping islands' contacts
+// was 7% of a tick (a line of each 256-byte contact read, then moved).
 template <class Leaves>
 void move_contacts(std::vector<RigidContact>& from, std::vector<RigidContact>& to, const Leaves& leaves) {
-    const std::size_t leaving = std::size_t(std::count_if(from.begin(), from.end(), leaves));
-    if (leaving == 0) return;
-    if (leaving == from.size() && to.empty()) {  // a whole pile at once: no copy at all
+    if (to.empty() && std::all_of(from.begin(), from.end(), leaves)) {  // a whole pile at once: no copy at all
         std::swap(from, to);
         return;
     }
-    // Grown to twice at least (a pile falling asleep an island at a time adds to its sleeping
-    // contacts tick after tick: each growth is a copy into fresh pages).
-    if (to.size() + leaving > to.capacity()) to.reserve(std::max(to.size() + leaving, 2 * to.capacity()));
     std::size_t kept = 0;
     for (std::size_t k = 0; k < from.size(); ++k) {
         if (leaves(from[k])) {
+            // Grown to twice at least (a pile falling asleep an island at a time adds to its
+            // sleeping contacts tick after tick: each growth is a copy into fresh pages).
+            if (to.size() == to.capacity()) to.reserve(std::max<std::size_t>(16, 2 * to.capacity()));
             to.push_back(from[k]);
         } else {
             if (kept != k) from[kept] = from[k];
