@@ -32,26 +32,30 @@ struct Islands {
 
 namespace {
 
-// The contacts `leaves` picks, moved from `from` to the end of `to`; both lists keep their order.
-// A stable partition without the scratch copy of the whole list std::stable_partition makes, and
-// no copy at all when the whole list goes into an empty one (a pyramid falling asleep at once): a
-// pile's contacts are megabytes, and the fresh pages of those copies made the tick stack:10 fell
-// asleep in 2 ms longer than the ticks before it. One pass over the list, each contact asked
-// once: in bin:3000, where an island wakes most ticks, a pass over the sleeping islands' contacts
-// was 7% of a tick (a line of each 256-byte contact read, then moved).
-template <class Leaves>
-void move_contacts(std::vector<RigidContact>& from, std::vector<RigidContact>& to, const Leaves& leaves) {
-    if (to.empty() && std::all_of(from.begin(), from.end(), leaves)) {  // a whole pile at once: no copy at all
-        std::swap(from, to);
-        return;
+// Each contact `sleeps` picks moved from `from` to the end of its island's list (`island_of`
+// it), both kept in their order: a pass over the tick's contacts. A pile falling asleep at once
+// (every contact leaving, into an island with none) takes the whole list without a copy: a
+// pile's contacts are megabytes, and the fresh pages of such a copy made the tick stack:10 fell
+// asleep in 2 ms longer than the ticks before it.
+template <class Sleeps, class IslandOf>
+void set_aside(std::vector<RigidContact>& from, std::vector<std::vector<RigidContact>>& islands, const Sleeps& sleeps,
+               const IslandOf& island_of) {
+    const auto list = [&](std::uint32_t island) -> std::vector<RigidContact>& {
+        if (island >= islands.size()) islands.resize(std::size_t(island) + 1);
+        return islands[island];
+    };
+    if (!from.empty() && sleeps(from.front())) {
+        const std::uint32_t first = island_of(from.front());
+        if (list(first).empty() &&
+            std::all_of(from.begin(), from.end(), [&](const RigidContact& c) { return sleeps(c) && island_of(c) == first; })) {
+            std::swap(from, islands[first]);
+            return;
+        }
     }
     std::size_t kept = 0;
     for (std::size_t k = 0; k < from.size(); ++k) {
-        if (leaves(from[k])) {
-            // Grown to twice at least (a pile falling asleep an island at a time adds to its
-            // sleeping contacts tick after tick: each growth is a copy into fresh pages).
-            if (to.size() == to.capacity()) to.reserve(std::max<std::size_t>(16, 2 * to.capacity()));
-            to.push_back(from[k]);
+        if (sleeps(from[k])) {
+            list(island_of(from[k])).push_back(from[k]);
         } else {
             if (kept != k) from[kept] = from[k];
             ++kept;
@@ -86,8 +90,19 @@ void World::wake_islands(std::vector<std::uint32_t> islands, std::vector<RigidCo
         --sleep_.sleeping;
         if (b < motion_.size()) motion_[b] = rigid_motion(b);  // awake from now on (motion_)
     }
-    // Those of bodies now awake go; the rest stay, in their order.
-    move_contacts(sleep_.contacts, warm, [&](const RigidContact& c) { return asleep_[c.a] == 0; });
+    // Their islands' contacts go, island after island (a pair's points are all in one island,
+    // next to each other, in their order); no other island's are touched. One island waking into
+    // an empty list is handed over whole.
+    for (const std::uint32_t island : islands) {
+        if (island >= sleep_.contacts.size()) continue;
+        std::vector<RigidContact>& list = sleep_.contacts[island];
+        if (warm.empty()) {
+            std::swap(warm, list);
+        } else {
+            warm.insert(warm.end(), list.begin(), list.end());
+        }
+        list.clear();
+    }
 }
 
 namespace {
@@ -282,7 +297,9 @@ void World::update_sleep() {
     }
     if (!fell) return;
     // Their contacts are set aside, to warm-start the solver when they wake.
-    move_contacts(contacts_, sleep_.contacts, [&](const RigidContact& c) { return c.soft < 0 && asleep_[c.a] != 0; });
+    set_aside(
+        contacts_, sleep_.contacts, [&](const RigidContact& c) { return c.soft < 0 && asleep_[c.a] != 0; },
+        [&](const RigidContact& c) { return sleep_.island[c.a]; });
 }
 
 }  // namespace softbody

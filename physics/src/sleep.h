@@ -24,7 +24,8 @@
 //     at kSleepSpeed or faster) or soft triangle within reach, no spring to a soft body, no grab.
 //     A soft body resting on it does not hold it: its particles lie on it as on a fixed body
 //     while it sleeps.
-// Its bodies' P and L become exactly 0, and its contacts are set aside (SleepState::contacts).
+// Its bodies' P and L become exactly 0, and its contacts are set aside in the island's own list
+// (SleepState::contacts).
 // A sleeping body is not integrated, has no contacts found with the ground, fixed or other
 // sleeping bodies, and is in no solver: it costs its box in the broad phase and nothing else
 // (nothing at all when every rigid body sleeps: then the broad phase does not run).

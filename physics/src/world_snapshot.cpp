@@ -116,13 +116,17 @@ void World::restore(const WorldSnapshot& s) {
 }
 
 std::size_t WorldSnapshot::bytes() const {
-    std::size_t total = sizeof(*this);
+    std::size_t total = sizeof(*this), sleeping_contacts = 0;
+    for (const std::vector<RigidContact>& island : sleep.contacts) {
+        total += sizeof(island);
+        sleeping_contacts += island.size();
+    }
     for (const Soft& body : soft) {
         total += sizeof(Soft) + body.inv_mass.size() * sizeof(float) + (body.def.pinned.size() + body.built.pinned.size()) * 4 +
                  (body.x.size() + body.v.size() + body.verlet_step.size() + body.x_tick_prev.size()) * 3 * sizeof(float);
     }
     return total + (rigid.size() + rigid_tick_prev.size() + sleep.rest_time.size() + sleep.rest_pose.size()) * sizeof(double) +
-           (contacts.size() + sleep.contacts.size()) * sizeof(RigidContact) + pair_cache.pairs.size() * sizeof(CachedPair) +
+           (contacts.size() + sleeping_contacts) * sizeof(RigidContact) + pair_cache.pairs.size() * sizeof(CachedPair) +
            pair_cache.points.size() * sizeof(CachedPoint) + sleep.island.size() * sizeof(std::uint32_t) +
            (rigid_built.size() + rigid_defs.size()) * sizeof(RigidBodyDef) + springs.size() * sizeof(SpringDef) +
            links.size() * sizeof(Link) + divergence.size();

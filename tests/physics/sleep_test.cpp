@@ -284,6 +284,50 @@ TEST(Sleep, BodyDriftingThroughEmptySpaceNeverSleeps) {
     EXPECT_NEAR(position_of(world, 0).x, 0.025, 1e-9);
 }
 
+// Two towers of two boxes, 5 m apart, fall asleep in one tick as two islands, each with its own
+// contacts set aside. Woken one at a time, each island gets back its own contacts and no other's
+// (the other tower still asleep with its own kept), and, warm-started from them, its boxes hold
+// still in the tick after it wakes.
+TEST(Sleep, EachIslandWakesWithItsOwnContacts) {
+    Scene scene;
+    for (const double x : {0.0, 5.0}) {
+        for (const double z : {0.25, 0.75}) {
+            RigidBodyDef box;
+            box.name = "box " + std::to_string(scene.rigid_bodies.size());
+            box.size = Vec3d{0.5, 0.5, 0.5};
+            box.position = Vec3d{x, 0.0, z};
+            scene.rigid_bodies.push_back(box);
+        }
+    }
+    World world((scene));
+    for (std::uint64_t t = 0; t < 2 * kTicksPerSecond && world.sleeping_count() < 4; ++t) world.tick();
+    ASSERT_EQ(world.sleeping_count(), 4u);
+    ASSERT_NE(world.rigid_asleep(0), false);
+    const auto contacts_of = [&](std::uint32_t first) {
+        std::size_t n = 0;
+        for (const RigidContact& c : world.contacts()) n += c.a == first || c.a == first + 1 ? 1 : 0;
+        return n;
+    };
+    EXPECT_EQ(contacts_of(0), 0u);
+    EXPECT_EQ(contacts_of(2), 0u);
+    for (const std::uint32_t first : {0u, 2u}) {
+        const std::size_t before = world.contacts().size();
+        world.wake_rigid(first);
+        EXPECT_FALSE(world.rigid_asleep(first));
+        EXPECT_FALSE(world.rigid_asleep(first + 1));
+        // Four corners on the ground and four between the boxes, at least.
+        EXPECT_GE(contacts_of(first), 8u) << first;
+        EXPECT_EQ(world.contacts().size() - before, contacts_of(first)) << first;
+        if (first == 0) {
+            EXPECT_TRUE(world.rigid_asleep(2));
+            EXPECT_TRUE(world.rigid_asleep(3));
+        }
+        const Vec3d top = position_of(world, first + 1);
+        world.tick();
+        EXPECT_LT(length(position_of(world, first + 1) - top), 1e-4) << first;
+    }
+}
+
 // A box resting 3 mm from a ball that spins in place for ever (about the vertical, on one
 // point: nothing holds that turn back) is within the ball's reach, but they do not touch: they
 // are two islands, and the box sleeps while the ball spins on. A ball rolling into the box from

@@ -102,7 +102,9 @@ struct SleepState {
     std::vector<double> rest_pose;        // per rigid body: its centre (3) and orientation (4) as its rest began
     std::vector<std::uint32_t> island;    // per rigid body: kAwake, or the island it sleeps in (its first body's index)
     std::vector<double> deepest;          // per rigid body: its deepest contact with another as the last tick ended, m
-    std::vector<RigidContact> contacts;   // the sleeping islands' contacts as they fell asleep: their warm start on waking
+    // Each sleeping island's contacts as it fell asleep, in their order then (by island: its
+    // first body's index): its warm start on waking.
+    std::vector<std::vector<RigidContact>> contacts;
     std::size_t sleeping = 0;             // bodies asleep
 };
 
