@@ -69,6 +69,12 @@ struct RigidContactScratch {
     std::vector<std::vector<CachedPair>> new_pairs;          // per chunk, joined in order
     std::vector<std::vector<CachedPoint>> new_points;        // per chunk
 };
+// Each body's hull is its own (a pile's boxes differ in size), out of the cache in a large pile,
+// and reached through two pointers: a loop over the bodies in order that reads their hulls'
+// vertices asks, at body b, for the hull of the body 8 ahead and for the first vertices of the
+// one 4 ahead (whose hull it asked for 4 bodies before). A hint only: the same bits.
+void fetch_hull_ahead(std::span<const CollisionShape> shapes, std::size_t b, std::size_t end);
+
 // They are written into `out` from `at` on, over what it holds there (a list kept from tick to
 // tick), growing it where it is short (place_chunks): the caller cuts it to the returned end.
 std::size_t rigid_body_contacts(std::span<const RigidBody> bodies, std::span<const CollisionShape> shapes,

@@ -376,6 +376,7 @@ void World::generate_contacts(double reach) {
     const std::size_t chunks = for_chunks(pool_.get(), rigid_.size(), 128, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkList taken(ground[chunk]);
         for (std::size_t b = begin; b < end; ++b) {
+            fetch_hull_ahead(shapes_, b, end);
             if (asleep_[b]) continue;
             rigid_ground_contacts(rigid_[b], std::uint32_t(b), motion_[b], settings_, reach, *taken);
         }
