@@ -55,6 +55,7 @@
 
 #include "collide_internal.h"
 #include "manifold.h"
+#include "physics/portable_math.h"
 
 namespace softbody {
 
@@ -452,6 +453,12 @@ CollisionShape hull_shape(std::shared_ptr<const ConvexHull> hull) {
         if (e.faces[0] == kNone || e.faces[1] == kNone) broken("an edge with one face");
     }
     for (const Vec3d& v : h.vertices) shape.bounding_radius = std::max(shape.bounding_radius, length(v));
+    double least_angle = 2.0 * kMostContactTurn;
+    for (const HullEdge& e : shape.edges) {
+        const double cosine = std::clamp(dot(h.faces[e.faces[0]].normal, h.faces[e.faces[1]].normal), -1.0, 1.0);
+        least_angle = std::min(least_angle, portable::acos(cosine));
+    }
+    shape.contact_turn = std::clamp(0.5 * least_angle, kLeastContactTurn, kMostContactTurn);
     // The vertices and the faces' planes make the hull (the same vertices in another order are
     // another stamp: only a false "different", never a false "same").
     shape.stamp = stamp_of(kStampStart, double(h.vertices.size()));

@@ -443,7 +443,8 @@ int World::begin_contacts(double interval, int steps) {
 }
 
 // How many times contacts must be found over `time`: once, or for a body turning fast enough to
-// turn more than kMaxContactTurn in that time, once for every part of it in which none does. The
+// turn more than its shape allows in that time (CollisionShape::contact_turn: half the angle
+// between two neighbouring faces, 0.1 to 0.2 rad), once for every part of it in which none does. The
 // solver takes each body's anchors, normal and inertia where its contacts were found; a thin
 // plank tumbling at 20 rad/s turns 0.4 rad in a tick, by which its inertia in world axes and
 // its corners have moved on, and impulses found for where it was would no longer stop it (and
@@ -470,13 +471,13 @@ int World::contact_intervals(double time) {
         double fastest = 0.0;  // (the chunk's own, written once)
         for (std::size_t b = begin; b < end; ++b) {
             if (touching[b] && !rigid_[b].fixed && !asleep_[b] && rigid_[b].shape != ShapeKind::Sphere) {
-                fastest = std::max(fastest, length(motion_[b].omega));
+                fastest = std::max(fastest, length(motion_[b].omega) / shapes_[b].contact_turn);
             }
         }
         fastest_in[chunk] = fastest;
     });
     const double fastest = *std::max_element(fastest_in.begin(), fastest_in.end());
-    const double needed = std::ceil(time * fastest / kMaxContactTurn);
+    const double needed = std::ceil(time * fastest);
     const double most = std::max(1.0, std::ceil(double(kMaxRotationSubsteps) * time / double(settings_.dt)));
     return needed >= most ? int(most) : std::max(1, int(needed));
 }
@@ -501,6 +502,7 @@ void World::tick() {
     // an impact in the middle of a tick has its substeps and contacts follow it at once.
     contact_energy_ = {};
     tick_substeps_ = 0;
+    tick_finds_ = 0;
     // Soft bodies within reach of one another (or of themselves): found before the last
     // tick's positions are forgotten, as the rigid contacts are; at least kContactSubsteps then.
     soft_touching_ = soft_contacts_->find(soft_, rigid_, y_, settings_, settings_.dt, *pool_);
@@ -528,6 +530,7 @@ void World::tick() {
             // over one substep only (and found again, from where it leaves the bodies, for the
             // next).
             find_contacts(left);
+            ++tick_finds_;
             if (!soft_.empty()) steps = std::max(steps, soft_contact_substeps(part));
             const int turns = contacts_.empty() ? 1 : contact_intervals(left);
             if (turns > 1) {

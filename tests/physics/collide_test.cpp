@@ -659,6 +659,36 @@ TEST(CollisionShapes, HullEdgesKnowTheirFaces) {
     EXPECT_EQ(ball(0.3).bounding_radius, 0.3);
 }
 
+// How far a hull may turn between two finds of its contacts: half the least angle between two
+// neighbouring faces' normals, within [kLeastContactTurn, kMostContactTurn]. A prism of N sides
+// has its sides 2 pi / N apart (and each at pi/2 to the caps): pi / N, so 8 and 12 sides are held
+// to the most, 16 and 24 sides get their own, 32 sides (a cylinder's) the least. A box's
+// faces are pi/2 apart, an icosahedron's 0.73 rad: both the most. A ball is never asked.
+TEST(CollisionShapes, ContactTurnIsHalfTheAngleBetweenNeighbouringFaces) {
+    const auto prism = [](int sides) {
+        std::vector<Vec3d> p;
+        for (int k = 0; k < sides; ++k) {
+            const double a = 2.0 * kPi * k / sides;
+            for (const double z : {-0.1, 0.1}) p.push_back({0.1 * std::cos(a), 0.1 * std::sin(a), z});
+        }
+        return hull_shape(std::make_shared<const ConvexHull>(convex_hull(p)));
+    };
+    for (const int sides : {8, 12, 16, 24, 32}) {
+        const CollisionShape shape = prism(sides);
+        ASSERT_EQ(shape.hull->faces.size(), std::size_t(sides + 2));
+        EXPECT_NEAR(shape.contact_turn, std::clamp(kPi / sides, kLeastContactTurn, kMostContactTurn), 1e-12) << sides << " sides";
+    }
+    EXPECT_EQ(box({1, 2, 3}).contact_turn, kMostContactTurn);
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;  // the golden ratio: an icosahedron's corners
+    std::vector<Vec3d> ico;
+    for (const double a : {-1.0, 1.0}) {
+        for (const double b : {-t, t}) ico.insert(ico.end(), {Vec3d{0, a, b}, Vec3d{a, b, 0}, Vec3d{b, 0, a}});
+    }
+    const CollisionShape icosahedron = hull_shape(std::make_shared<const ConvexHull>(convex_hull(ico)));
+    ASSERT_EQ(icosahedron.hull->faces.size(), 20u);
+    EXPECT_EQ(icosahedron.contact_turn, kMostContactTurn);
+}
+
 // --- Particles: a point and a segment against a shape ---------------------------------------------------
 
 // A box 1 x 2 x 3, turned and moved. Body coordinates make the answers closed forms.

@@ -49,8 +49,6 @@ inline constexpr int kContactSubsteps = 4;
 inline constexpr double kMaxTurn = 0.5;
 inline constexpr double kMaxTurnRK4 = 0.1;
 inline constexpr double kMaxStiffTurn = 2.0;
-// No body turns more than this (rad) between two findings of its contacts (World::contact_intervals).
-inline constexpr double kMaxContactTurn = 0.1;
 inline constexpr int kMaxRotationSubsteps = 1000;
 
 // The energy contacts took (< 0) or gave over a tick, J, and how much of it was restitution's.
@@ -287,6 +285,9 @@ public:
     // Substeps of the last tick: the springs' need (stability), the rigid bodies' turns, or at
     // least kContactSubsteps in a tick with contacts.
     int substeps_in_use() const { return tick_substeps_; }
+    // How many times the last tick found the rigid bodies' contacts: once, or while a body with a
+    // contact turns faster than its shape allows (CollisionShape::contact_turn), once a substep.
+    int contact_finds() const { return tick_finds_; }
     // What the contacts did to the kinetic energy in the last tick (< 0: took it), J, and
     // restitution's share of it (contact_solver.h says how it is measured).
     const ContactEnergy& contact_energy() const { return contact_energy_; }
@@ -370,6 +371,7 @@ private:
     std::vector<int> contact_substeps_;  // per soft body: what its contacts need (update_substeps)
     std::vector<std::uint8_t> soft_in_contact_;  // per soft body: within reach of a contact this tick
     int tick_substeps_ = 1;  // what the last tick ran
+    int tick_finds_ = 0;     // and how many times it found the rigid contacts
     Status status_ = Status::Ok;
     std::string divergence_;
     std::optional<Grab> grab_;
