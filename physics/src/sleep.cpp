@@ -244,7 +244,7 @@ void World::update_sleep() {
         }
     });
     bool any_rested = false;
-    for (std::size_t b = 0; b < n && !any_rested; ++b) any_rested = !rigid_[b].fixed && !asleep_[b] && sleep_.rest_time[b] >= kTimeToSleep;
+    for (std::size_t b = 0; b < n && !any_rested; ++b) any_rested = !rigid_[b].fixed && !asleep_[b] && sleep_.rest_time[b] >= kTimeToSleepReached;
     if (!settings_.sleeping || !any_rested) return;
 
     // The islands of the awake bodies, what leans on something fixed, and what is held.
@@ -280,7 +280,7 @@ void World::update_sleep() {
     for (std::size_t b = 0; b < n; ++b) {
         if (rigid_[b].fixed || asleep_[b]) continue;
         const std::uint32_t root = islands.find(std::uint32_t(b));
-        if (sleep_.rest_time[b] < kTimeToSleep || held[b]) ready[root] = 0;
+        if (sleep_.rest_time[b] < kTimeToSleepReached || held[b]) ready[root] = 0;
         if (supported[b]) leans[root] = 1;
     }
     bool fell = false;

@@ -66,8 +66,12 @@ inline constexpr double kSleepDepth = 2e-3;
 // after tick, and kept its pile awake for ever. It sleeps as deep as it stood awake. (The push
 // apart takes a 2 mm overlap out at about 2 cm/s: ContactSettings.)
 inline constexpr double kSleepDepthShrink = 1e-4;
-// s: how long every body of an island is at rest before it sleeps.
+// s: how long every body of an island is at rest before it sleeps. A rest time is a sum of dt,
+// a float (0.02 s is 0.0199999996 s as a double), and 25 ticks of it come 11 ns short of half a
+// second: a body counts as at rest that long within a millionth of it (kTimeToSleepReached),
+// else it slept a tick late.
 inline constexpr double kTimeToSleep = 0.5;
+inline constexpr double kTimeToSleepReached = kTimeToSleep * (1.0 - 1e-6);
 // m: how far a point of a resting body may go from where its rest began; m/s: how fast it may
 // go meanwhile. A pile's bodies settle as it sinks into its contacts, and now and then one
 // twitches for a tick as a contact beside it is found again with other points: in the 20-layer
