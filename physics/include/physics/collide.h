@@ -49,10 +49,6 @@ struct HullEdge {
     std::array<std::uint32_t, 2> faces{};
 };
 
-// A body's collision shape: a sphere (radius, no hull) or a convex hull, in body axes about the
-// centre of mass. Built once per body and kept beside it, as its topology: the separating-axis
-// test needs each edge's two faces, which ConvexHull does not store and which would cost more to
-// find on every test than the test itself.
 // How far a body may turn between two finds of its contacts, rad (World::contact_intervals).
 // Contacts found where a hull was stay those of the right faces, edges and corners until it has
 // turned about half the way from one face to its neighbour: half the least angle between the
@@ -66,6 +62,10 @@ struct HullEdge {
 inline constexpr double kLeastContactTurn = 0.1;
 inline constexpr double kMostContactTurn = 0.2;
 
+// A body's collision shape: a sphere (radius, no hull) or a convex hull, in body axes about the
+// centre of mass. Built once per body and kept beside it, as its topology: the separating-axis
+// test needs each edge's two faces, which ConvexHull does not store and which would cost more to
+// find on every test than the test itself.
 struct CollisionShape {
     double radius = 0.0;                     // a sphere's, m
     std::shared_ptr<const ConvexHull> hull;  // or a hull (null for a sphere)

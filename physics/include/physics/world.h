@@ -286,7 +286,8 @@ public:
     // least kContactSubsteps in a tick with contacts.
     int substeps_in_use() const { return tick_substeps_; }
     // How many times the last tick found the rigid bodies' contacts: once, or while a body with a
-    // contact turns faster than its shape allows (CollisionShape::contact_turn), once a substep.
+    // contact turns faster than its shape allows (CollisionShape::contact_turn), once for each
+    // part of the tick that takes (contact_intervals).
     int contact_finds() const { return tick_finds_; }
     // What the contacts did to the kinetic energy in the last tick (< 0: took it), J, and
     // restitution's share of it (contact_solver.h says how it is measured).
